@@ -1,0 +1,61 @@
+# Locate SUNDIALS CVODE (>= 6) and set ${out_var} to TRUE when found, with
+# TUMBLE_SUNDIALS_TARGETS naming what tumble::cvode links.
+#
+# SUNDIALS exports SUNDIALSConfig.cmake. Its target names differ between releases:
+#   6.x: SUNDIALS::cvode_shared / SUNDIALS::cvode_static, ... (no SUNDIALS::core)
+#   7.x: SUNDIALS::cvode (an alias), ..., and SUNDIALS::core, which every module needs.
+# We take, for each component, the first of SUNDIALS::<c>, SUNDIALS::<c>_shared,
+# SUNDIALS::<c>_static that exists. Without a config file we fall back to find_library.
+set(TUMBLE_SUNDIALS_COMPONENTS cvode nvecserial sunmatrixdense sunlinsoldense sunmatrixband
+    sunlinsolband sunlinsolspgmr)
+
+macro(tumble_find_sundials out_var)
+  set(${out_var} FALSE)
+  set(TUMBLE_SUNDIALS_TARGETS "")
+  find_package(SUNDIALS 6 QUIET CONFIG)
+  if(SUNDIALS_FOUND)
+    set(_tumble_ok TRUE)
+    foreach(_c IN LISTS TUMBLE_SUNDIALS_COMPONENTS ITEMS core)
+      set(_tumble_t "")
+      foreach(_cand SUNDIALS::${_c} SUNDIALS::${_c}_shared SUNDIALS::${_c}_static)
+        if(NOT _tumble_t AND TARGET ${_cand})
+          set(_tumble_t ${_cand})
+        endif()
+      endforeach()
+      if(_tumble_t)
+        list(APPEND TUMBLE_SUNDIALS_TARGETS ${_tumble_t})
+      elseif(NOT _c STREQUAL "core")  # core exists only from 7.0 on
+        set(_tumble_ok FALSE)
+      endif()
+    endforeach()
+    set(${out_var} ${_tumble_ok})
+  endif()
+  if(NOT ${out_var})
+    set(TUMBLE_SUNDIALS_TARGETS "")
+    find_path(TUMBLE_CVODE_INCLUDE_DIR cvode/cvode.h)
+    set(_tumble_ok TRUE)
+    foreach(_c IN LISTS TUMBLE_SUNDIALS_COMPONENTS)
+      find_library(TUMBLE_SUNDIALS_${_c}_LIBRARY NAMES sundials_${_c})
+      if(NOT TUMBLE_SUNDIALS_${_c}_LIBRARY)
+        set(_tumble_ok FALSE)
+      endif()
+    endforeach()
+    if(TUMBLE_CVODE_INCLUDE_DIR AND _tumble_ok)
+      foreach(_c IN LISTS TUMBLE_SUNDIALS_COMPONENTS)
+        if(NOT TARGET tumble_sundials::${_c})
+          add_library(tumble_sundials::${_c} UNKNOWN IMPORTED)
+          set_target_properties(tumble_sundials::${_c} PROPERTIES
+            IMPORTED_LOCATION "${TUMBLE_SUNDIALS_${_c}_LIBRARY}"
+            INTERFACE_INCLUDE_DIRECTORIES "${TUMBLE_CVODE_INCLUDE_DIR}")
+        endif()
+        list(APPEND TUMBLE_SUNDIALS_TARGETS tumble_sundials::${_c})
+      endforeach()
+      set(${out_var} TRUE)
+    endif()
+  endif()
+  if(${out_var})
+    message(STATUS "tumble: SUNDIALS CVODE found: ${TUMBLE_SUNDIALS_TARGETS}")
+  else()
+    message(STATUS "tumble: SUNDIALS CVODE (>= 6) not found; tumble::cvode is not available")
+  endif()
+endmacro()

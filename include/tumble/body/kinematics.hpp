@@ -1,0 +1,34 @@
+#pragma once
+// What force elements see of a body at one instant: its reference point's position and velocity,
+// its rotation matrix (computed only when some load needs it), its angular velocity, and its mass
+// properties. Reference chapter, Eqs. (1.1) and (1.4).
+
+#include "tumble/body/mass_properties.hpp"
+#include "tumble/core/types.hpp"
+
+namespace tumble {
+
+enum class ReferencePoint {
+  centroid,  ///< the body frame sits at the centroid: m12 and f_v^r vanish (Eq. 1.33)
+  offset,    ///< the body frame sits anywhere: the coupling terms are computed
+};
+
+template <class S, ReferencePoint Ref = ReferencePoint::centroid> struct BodyKinematics {
+  static constexpr ReferencePoint reference = Ref;
+  const MassProperties<S>* mass_properties = nullptr;
+  Vector3<S> position;  ///< r_oc, inertial components
+  Vector3<S> velocity;  ///< rdot_oc, inertial components
+  Matrix3<S> rotation;  ///< R, body -> inertial (valid when the loads asked for it)
+  Vector3<S> omega;     ///< angular velocity, body components (Eq. 1.5)
+
+  /// Eq. (1.1): r_op = r_oc + R r_cp.
+  [[nodiscard]] Vector3<S> point_position(const Vector3<S>& r) const {
+    return position + rotation * r;
+  }
+  /// Eq. (1.4): rdot_op = rdot_oc + R (omega x r_cp).
+  [[nodiscard]] Vector3<S> point_velocity(const Vector3<S>& r) const {
+    return velocity + rotation * omega.cross(r);
+  }
+};
+
+}  // namespace tumble

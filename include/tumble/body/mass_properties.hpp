@@ -1,0 +1,144 @@
+#pragma once
+// Mass properties of a rigid body, validated on construction.
+//
+// Reference chapter, Eq. (1.22): the inertia tensor about the reference point c in the body
+// frame, I_c = \int S(r)^T S(r) dm. The parallel axis theorem relates it to the inertia about the
+// centroid g, I_c = I_g + m S(r_g)^T S(r_g) = I_g + m (|r_g|^2 I - r_g r_g^T), with r_g the
+// centroid's position relative to c in body components. Units: kg, m, kg m^2 (any consistent
+// set works: nothing in tumble assumes SI).
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Eigenvalues>
+
+#include "tumble/core/math.hpp"
+#include "tumble/core/types.hpp"
+
+namespace tumble {
+
+template <class S = double> class MassProperties {
+ public:
+  /// Inertia `inertia` about the centroid; the centroid at `centroid` in body components
+  /// relative to the reference point (zero when the body frame sits at the centroid).
+  [[nodiscard]] static MassProperties about_centroid(const S& mass, const Matrix3<S>& inertia,
+                                                     const Vector3<S>& centroid = Vector3<S>::Zero()) {
+    return MassProperties(mass, inertia, centroid);
+  }
+
+  /// Inertia `inertia` about the reference point c (the body frame's origin); converted to the
+  /// centroid by the parallel axis theorem before validation.
+  [[nodiscard]] static MassProperties about_reference(const S& mass, const Matrix3<S>& inertia,
+                                                      const Vector3<S>& centroid) {
+    check_mass(mass);
+    check_finite(centroid, "centroid");
+    check_finite(inertia, "inertia about the reference point");
+    return MassProperties(mass, inertia - parallel_axis(mass, centroid), centroid);
+  }
+
+  [[nodiscard]] const S& mass() const { return mass_; }
+  /// r_g: the centroid relative to the reference point, body components.
+  [[nodiscard]] const Vector3<S>& centroid() const { return centroid_; }
+  /// m r_g = \int r dm, the first moment about the reference point (Eq. 1.26).
+  [[nodiscard]] const Vector3<S>& first_moment() const { return first_moment_; }
+  /// I_g, about the centroid, body axes.
+  [[nodiscard]] const Matrix3<S>& inertia_centroid() const { return inertia_centroid_; }
+  /// I_c, about the reference point, body axes (Eq. 1.22).
+  [[nodiscard]] const Matrix3<S>& inertia_reference() const { return inertia_reference_; }
+  /// I_g^{-1}, computed once here so the accelerations need no solve.
+  [[nodiscard]] const Matrix3<S>& inertia_centroid_inverse() const { return inertia_inverse_; }
+  /// Principal moments of I_g in ascending order.
+  [[nodiscard]] Vector3<double> principal_moments() const {
+    return Eigen::SelfAdjointEigenSolver<Matrix3<double>>(values(inertia_centroid_),
+                                                          Eigen::EigenvaluesOnly)
+        .eigenvalues();
+  }
+
+  /// m (|r|^2 I - r r^T) = m S(r)^T S(r): the parallel-axis term.
+  [[nodiscard]] static Matrix3<S> parallel_axis(const S& mass, const Vector3<S>& r) {
+    return mass * (r.squaredNorm() * Matrix3<S>::Identity() - r * r.transpose());
+  }
+
+ private:
+  MassProperties(const S& mass, const Matrix3<S>& inertia_centroid, const Vector3<S>& centroid)
+      : mass_(mass), centroid_(centroid) {
+    check_mass(mass);
+    check_finite(centroid, "centroid");
+    check_finite(inertia_centroid, "inertia about the centroid");
+    inertia_centroid_ = check_inertia(inertia_centroid);
+    first_moment_ = mass_ * centroid_;
+    inertia_reference_ = inertia_centroid_ + parallel_axis(mass_, centroid_);
+    inertia_inverse_ = inertia_centroid_.inverse();
+  }
+
+  static Matrix3<double> values(const Matrix3<S>& m) {
+    Matrix3<double> v;
+    for (int j = 0; j < 3; ++j) {
+      for (int i = 0; i < 3; ++i) {
+        v(i, j) = static_cast<double>(detail::value(m(i, j)));
+      }
+    }
+    return v;
+  }
+
+  static void check_mass(const S& mass) {
+    const auto m = detail::value(mass);
+    if (!detail::isfinite(mass) || !(m > 0)) {
+      std::ostringstream os;
+      os << "tumble::MassProperties: the mass must be positive and finite, got " << m;
+      throw std::invalid_argument(os.str());
+    }
+  }
+
+  template <class Derived>
+  static void check_finite(const Eigen::MatrixBase<Derived>& x, const char* what) {
+    if (!detail::all_finite(x)) {
+      throw std::invalid_argument(std::string("tumble::MassProperties: the ") + what +
+                                  " has a non-finite entry");
+    }
+  }
+
+  /// Symmetric (to rounding), positive definite, principal moments obeying the triangle
+  /// inequality I1 + I2 >= I3 (equality: a plane lamina or a thin rod). Returns the
+  /// symmetrized matrix.
+  static Matrix3<S> check_inertia(const Matrix3<S>& inertia) {
+    const Matrix3<double> v = values(inertia);
+    const double scale = v.cwiseAbs().maxCoeff();
+    const double eps = std::numeric_limits<decltype(detail::value(S()))>::epsilon();
+    const double tol = 64 * static_cast<double>(eps) * scale;
+    const double asym = (v - v.transpose()).cwiseAbs().maxCoeff();
+    if (asym > tol) {
+      std::ostringstream os;
+      os << "tumble::MassProperties: the inertia tensor is not symmetric (largest |I_ij - I_ji| "
+         << "= " << asym << ", scale " << scale << ")";
+      throw std::invalid_argument(os.str());
+    }
+    const Vector3<double> ev =
+        Eigen::SelfAdjointEigenSolver<Matrix3<double>>(v, Eigen::EigenvaluesOnly).eigenvalues();
+    if (!(ev(0) > tol)) {
+      std::ostringstream os;
+      os << "tumble::MassProperties: the inertia tensor about the centroid is not positive "
+         << "definite (principal moments " << ev(0) << ", " << ev(1) << ", " << ev(2) << ")";
+      throw std::invalid_argument(os.str());
+    }
+    if (ev(0) + ev(1) < ev(2) - tol) {
+      std::ostringstream os;
+      os << "tumble::MassProperties: the principal moments " << ev(0) << ", " << ev(1) << ", "
+         << ev(2) << " violate the triangle inequality (" << ev(0) << " + " << ev(1) << " < "
+         << ev(2) << "): no mass distribution has this inertia";
+      throw std::invalid_argument(os.str());
+    }
+    return S(0.5) * (inertia + inertia.transpose());
+  }
+
+  S mass_;
+  Vector3<S> centroid_;
+  Vector3<S> first_moment_;
+  Matrix3<S> inertia_centroid_;
+  Matrix3<S> inertia_reference_;
+  Matrix3<S> inertia_inverse_;
+};
+
+}  // namespace tumble

@@ -1,0 +1,320 @@
+#pragma once
+// RigidBody<P, Ref, S>: the equations of motion of one free rigid body in the generalized
+// coordinates q = [r_oc (3, inertial); theta (P::size)], exactly as derived in the reference
+// chapter (../shared/reference/rigid-body-chapter.md, Sec. 1.1-1.4):
+//   point kinematics    Eqs. (1.1), (1.7)-(1.8), (1.11)-(1.12)
+//   mass matrix M       Eqs. (1.21)-(1.23)
+//   f_v                 Eqs. (1.26)-(1.27)
+//   generalized force Q Eqs. (1.28)-(1.31)
+//   M qddot = f_v + Q   Eq. (1.32), simplified at the centroid by Eq. (1.33)
+//
+// The accelerations are not found by factorizing M. Because M qddot = f_v + Q is the principle of
+// virtual work written in the coordinates q, it is equivalent to the Newton-Euler equations of the
+// body, which have a closed-form solution: with the wrench (F inertial, M_c body) reduced to c,
+//   alpha = I_g^{-1} (M_c - r_g x F^f - omega x I_g omega)        (moment about the centroid)
+//   a_c   = F/m - R (alpha x r_g + omega x (omega x r_g))           (centroid accelerates as F/m)
+// and thetaddot follows from alpha = G thetaddot + Gdot thetadot (Eq. 1.10) through the
+// parameterization (P::thetaddot), which for Euler parameters also imposes p.pddot = -|pdot|^2,
+// the second derivative of the constraint |p| = 1 (the solution of the constrained system).
+// At the centroid (Ref == centroid) r_g = 0, and the coupling terms are not computed at all.
+
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include <Eigen/Cholesky>
+
+#include "tumble/body/kinematics.hpp"
+#include "tumble/body/mass_properties.hpp"
+#include "tumble/body/wrench.hpp"
+#include "tumble/core/errors.hpp"
+#include "tumble/core/math.hpp"
+#include "tumble/core/types.hpp"
+#include "tumble/orientation/concept.hpp"
+
+namespace tumble {
+
+namespace detail {
+/// True when Gdot thetadot is identically zero for P (Euler parameters), so that it is skipped.
+template <class P> constexpr bool gdot_vanishes() {
+  if constexpr (requires { P::gdot_vanishes; }) {
+    return P::gdot_vanishes;
+  } else {
+    return false;
+  }
+}
+}  // namespace detail
+
+template <Orientation P, ReferencePoint Ref = ReferencePoint::centroid, class S = double>
+class RigidBody {
+ public:
+  using Param = P;
+  using Scalar = S;
+  static constexpr ReferencePoint reference = Ref;
+  static constexpr bool at_centroid = Ref == ReferencePoint::centroid;
+  static constexpr int n_theta = P::size;
+  static constexpr int nq = 3 + P::size;  ///< size of q (and of qdot)
+
+  using Theta = typename P::template Coords<S>;
+  using Coords = Vector<S, nq>;           ///< q, qdot, qddot, f_v, Q
+  using MassMatrix = Matrix<S, nq, nq>;   ///< M (Eq. 1.23)
+  using PointJacobian = Matrix<S, 3, nq>; ///< L_r (Eq. 1.8)
+  using Kinematics = BodyKinematics<S, Ref>;
+
+  /// \throws std::invalid_argument if Ref is centroid but the mass properties put the centroid
+  ///         away from the reference point.
+  explicit RigidBody(MassProperties<S> mass_properties) : mp_(std::move(mass_properties)) {
+    if constexpr (at_centroid) {
+      if (!(detail::value(mp_.centroid().squaredNorm()) == 0)) {
+        throw std::invalid_argument(
+            "tumble::RigidBody: a body framed at its centroid (ReferencePoint::centroid) needs a "
+            "zero centroid offset; use ReferencePoint::offset for a body frame away from it");
+      }
+    }
+  }
+
+  [[nodiscard]] const MassProperties<S>& mass_properties() const { return mp_; }
+
+  // --- pieces of the state --------------------------------------------------------------------
+  [[nodiscard]] static Vector3<S> position(const Coords& q) { return q.template head<3>(); }
+  [[nodiscard]] static Theta theta(const Coords& q) { return q.template tail<n_theta>(); }
+  [[nodiscard]] static Matrix3<S> rotation(const Coords& q) { return P::rotation(theta(q)); }
+  /// omega = G thetadot, body components (Eq. 1.5).
+  [[nodiscard]] static Vector3<S> omega(const Coords& q, const Coords& qdot) {
+    return P::G(theta(q)) * qdot.template tail<n_theta>();
+  }
+  /// qdot for a given velocity of the reference point (inertial) and omega (body): the inverse
+  /// map of the parameterization.
+  [[nodiscard]] static Coords qdot_from(const Coords& q, const Vector3<S>& velocity,
+                                        const Vector3<S>& omega_body) {
+    Coords qd;
+    qd << velocity, P::thetadot(theta(q), omega_body);
+    return qd;
+  }
+
+  // --- point kinematics -----------------------------------------------------------------------
+  /// Eq. (1.1): r_op = r_oc + R r_cp, with r_cp = `r` in body components.
+  [[nodiscard]] static Vector3<S> point_position(const Coords& q, const Vector3<S>& r) {
+    return position(q) + rotation(q) * r;
+  }
+  /// Eq. (1.8): L_r = [I, -R S(r) G].
+  [[nodiscard]] static PointJacobian point_jacobian(const Coords& q, const Vector3<S>& r) {
+    const Theta th = theta(q);
+    PointJacobian l;
+    l.template leftCols<3>().setIdentity();
+    l.template rightCols<n_theta>() = -P::rotation(th) * (skew(r) * P::G(th));
+    return l;
+  }
+  /// Eq. (1.7): rdot_op = L_r qdot = rdot_oc + R (omega x r).
+  [[nodiscard]] static Vector3<S> point_velocity(const Coords& q, const Coords& qdot,
+                                                 const Vector3<S>& r) {
+    return qdot.template head<3>() + rotation(q) * omega(q, qdot).cross(r);
+  }
+  /// Eq. (1.11): a_v = R [S(omega)^2 r - S(r) Gdot thetadot].
+  [[nodiscard]] static Vector3<S> point_velocity_acceleration(const Coords& q, const Coords& qdot,
+                                                              const Vector3<S>& r) {
+    const Theta th = theta(q);
+    const Vector3<S> w = omega(q, qdot);
+    Vector3<S> a = w.cross(w.cross(r));
+    if constexpr (!detail::gdot_vanishes<P>()) {
+      a -= r.cross(P::Gdot_thetadot(th, Theta(qdot.template tail<n_theta>())));
+    }
+    return P::rotation(th) * a;
+  }
+  /// Eq. (1.12): rddot_op = L_r qddot + a_v.
+  [[nodiscard]] static Vector3<S> point_acceleration(const Coords& q, const Coords& qdot,
+                                                     const Coords& qddot, const Vector3<S>& r) {
+    return point_jacobian(q, r) * qddot + point_velocity_acceleration(q, qdot, r);
+  }
+
+  // --- the terms of Eq. (1.32) ----------------------------------------------------------------
+  /// Eq. (1.23): M = [m I, m12; m21, G^T I_c G], m12 = -R S(m r_g) G (Eq. 1.21b), zero at the
+  /// centroid (Eq. 1.33). For Euler parameters M is singular with null vector [0; p].
+  [[nodiscard]] MassMatrix mass_matrix(const Coords& q) const {
+    const Theta th = theta(q);
+    const Matrix<S, 3, n_theta> g = P::G(th);
+    MassMatrix m;
+    m.template topLeftCorner<3, 3>() = mp_.mass() * Matrix3<S>::Identity();
+    m.template bottomRightCorner<n_theta, n_theta>() =
+        g.transpose() * mp_.inertia_reference() * g;  // Eq. (1.21c), (1.22)
+    if constexpr (at_centroid) {
+      m.template topRightCorner<3, n_theta>().setZero();
+      m.template bottomLeftCorner<n_theta, 3>().setZero();
+    } else {
+      const Matrix<S, 3, n_theta> m12 = -P::rotation(th) * (skew(mp_.first_moment()) * g);
+      m.template topRightCorner<3, n_theta>() = m12;  // Eq. (1.21b)
+      m.template bottomLeftCorner<n_theta, 3>() = m12.transpose();
+    }
+    return m;
+  }
+
+  /// Eqs. (1.26)-(1.27): f_v = [f_v^r; f_v^theta] with
+  ///   f_v^r     = -R S(omega)^2 (m r_g) + R S(m r_g) Gdot thetadot   (zero at the centroid)
+  ///   f_v^theta = -G^T [S(omega) I_c omega + I_c Gdot thetadot].
+  [[nodiscard]] Coords centrifugal_coriolis(const Coords& q, const Coords& qdot) const {
+    const Theta th = theta(q);
+    const Theta thd = qdot.template tail<n_theta>();
+    const Matrix<S, 3, n_theta> g = P::G(th);
+    const Vector3<S> w = g * thd;
+    const Matrix3<S>& ic = mp_.inertia_reference();
+    Vector3<S> inner = w.cross(ic * w);
+    Vector3<S> gdot_thd = Vector3<S>::Zero();
+    if constexpr (!detail::gdot_vanishes<P>()) {
+      gdot_thd = P::Gdot_thetadot(th, thd);
+      inner += ic * gdot_thd;
+    }
+    Coords f;
+    f.template tail<n_theta>() = -(g.transpose() * inner);  // Eq. (1.27)
+    if constexpr (at_centroid) {
+      f.template head<3>().setZero();  // Eq. (1.33)
+    } else {
+      const Vector3<S>& s = mp_.first_moment();
+      f.template head<3>() =
+          P::rotation(th) * (-w.cross(w.cross(s)) + s.cross(gdot_thd));  // Eq. (1.26)
+    }
+    return f;
+  }
+
+  /// Eq. (1.31): Q = [F; G^T M_c] for the wrench reduced to c.
+  [[nodiscard]] static Coords generalized_force(const Coords& q, const Wrench<S>& w) {
+    Coords f;
+    f << w.force, P::G(theta(q)).transpose() * w.moment;
+    return f;
+  }
+
+  /// The wrench whose generalized force is Q: F = Q^r and M_c = (G G^T)^{-1} G Q^theta (= G^{-T}
+  /// Q^theta for three-parameter sets). For Euler parameters the component of Q^theta along p is
+  /// a constraint force and does no work: it is dropped, as the constrained system does.
+  [[nodiscard]] static Wrench<S> wrench_from(const Coords& q, const Coords& gen_force) {
+    const Matrix<S, 3, n_theta> g = P::G(theta(q));
+    Wrench<S> w;
+    w.force = gen_force.template head<3>();
+    w.moment = (g * g.transpose()).ldlt().solve(g * gen_force.template tail<n_theta>());
+    return w;
+  }
+
+  /// The kinematic quantities force elements read. R is computed only when `with_rotation`
+  /// (force elements declare at compile time whether they need it).
+  template <bool with_rotation = true>
+  [[nodiscard]] Kinematics kinematics(const Coords& q, const Coords& qdot) const {
+    Kinematics k;
+    k.mass_properties = &mp_;
+    k.position = q.template head<3>();
+    k.velocity = qdot.template head<3>();
+    const Theta th = theta(q);
+    k.omega = P::G(th) * qdot.template tail<n_theta>();
+    if constexpr (with_rotation || !at_centroid) {
+      k.rotation = P::rotation(th);
+    }
+    return k;
+  }
+
+  /// qddot from M qddot = f_v + Q (Eq. 1.32; Eq. 1.33 at the centroid) for the loads reduced to
+  /// the wrench `w`, through the Newton-Euler closed form described at the top of this file.
+  /// \throws NonFiniteError when the result is not finite (non-finite state or load, or an
+  ///         attitude exactly at a singularity of P).
+  [[nodiscard]] Coords accelerations(const Coords& q, const Coords& qdot,
+                                     const Wrench<S>& w) const {
+    const Theta th = theta(q);
+    const Theta thd = qdot.template tail<n_theta>();
+    const Vector3<S> om = P::G(th) * thd;
+    return accelerations_impl(q, th, thd, om, w);
+  }
+
+  /// qddot from M qddot = f_v + Q for a generalized force Q (Eq. 1.32).
+  [[nodiscard]] Coords accelerations(const Coords& q, const Coords& qdot,
+                                     const Coords& gen_force) const {
+    return accelerations(q, qdot, wrench_from(q, gen_force));
+  }
+
+  /// The same, for a body and its kinematics already evaluated (the scene's hot path).
+  [[nodiscard]] Coords accelerations(const Coords& q, const Coords& qdot, const Kinematics& k,
+                                     const Wrench<S>& w) const {
+    return accelerations_impl(q, theta(q), Theta(qdot.template tail<n_theta>()), k.omega, w,
+                              &k.rotation);
+  }
+
+  // --- energy and momenta ---------------------------------------------------------------------
+  /// T = 1/2 qdot^T M qdot = 1/2 m |v_g|^2 + 1/2 omega . I_g omega.
+  [[nodiscard]] S kinetic_energy(const Coords& q, const Coords& qdot) const {
+    const Vector3<S> vg = centroid_velocity(q, qdot);
+    const Vector3<S> w = omega(q, qdot);
+    return S(0.5) * (mp_.mass() * vg.squaredNorm() + w.dot(mp_.inertia_centroid() * w));
+  }
+  /// Velocity of the centroid, inertial components.
+  [[nodiscard]] Vector3<S> centroid_velocity(const Coords& q, const Coords& qdot) const {
+    if constexpr (at_centroid) {
+      return qdot.template head<3>();
+    } else {
+      return point_velocity(q, qdot, mp_.centroid());
+    }
+  }
+  /// Position of the centroid, inertial components.
+  [[nodiscard]] Vector3<S> centroid_position(const Coords& q) const {
+    if constexpr (at_centroid) {
+      return q.template head<3>();
+    } else {
+      return point_position(q, mp_.centroid());
+    }
+  }
+  /// Linear momentum m v_g, inertial components.
+  [[nodiscard]] Vector3<S> linear_momentum(const Coords& q, const Coords& qdot) const {
+    return mp_.mass() * centroid_velocity(q, qdot);
+  }
+  /// Angular momentum about the centroid, body components: I_g omega.
+  [[nodiscard]] Vector3<S> angular_momentum_centroid(const Coords& q, const Coords& qdot) const {
+    return mp_.inertia_centroid() * omega(q, qdot);
+  }
+  /// Angular momentum about the inertial origin O, inertial components:
+  /// r_og x m v_g + R I_g omega.
+  [[nodiscard]] Vector3<S> angular_momentum(const Coords& q, const Coords& qdot) const {
+    return centroid_position(q).cross(linear_momentum(q, qdot)) +
+           rotation(q) * angular_momentum_centroid(q, qdot);
+  }
+
+ private:
+  Coords accelerations_impl(const Coords& q, const Theta& th, const Theta& thd,
+                            const Vector3<S>& om, const Wrench<S>& w,
+                            const Matrix3<S>* rot = nullptr) const {
+    const S& m = mp_.mass();
+    const Matrix3<S>& ig = mp_.inertia_centroid();
+    Coords qdd;
+    Vector3<S> alpha;
+    if constexpr (at_centroid) {
+      alpha = mp_.inertia_centroid_inverse() * (w.moment - om.cross(ig * om));
+      qdd.template head<3>() = w.force / m;
+    } else {
+      const Matrix3<S> r = rot ? *rot : P::rotation(th);
+      const Vector3<S>& rg = mp_.centroid();
+      // Moment about the centroid: M_g = M_c - r_g x F^f.
+      alpha = mp_.inertia_centroid_inverse() *
+              (w.moment - rg.cross(r.transpose() * w.force) - om.cross(ig * om));
+      qdd.template head<3>() = w.force / m - r * (alpha.cross(rg) + om.cross(om.cross(rg)));
+    }
+    qdd.template tail<n_theta>() = P::thetaddot(th, thd, alpha);  // Eq. (1.10)
+    if (!detail::isfinite(qdd.sum())) [[unlikely]] {
+      throw_non_finite(q, th, w);
+    }
+    return qdd;
+  }
+
+  [[noreturn]] static void throw_non_finite(const Coords& q, const Theta& th, const Wrench<S>& w) {
+    std::ostringstream os;
+    os << "tumble::RigidBody<" << P::name << ">::accelerations: non-finite result; ";
+    if (!detail::all_finite(q)) {
+      os << "the state q has a non-finite entry";
+    } else if (!detail::all_finite(w.force) || !detail::all_finite(w.moment)) {
+      os << "the applied load has a non-finite entry";
+    } else if (!(detail::value(P::singularity_distance(th)) > 0)) {
+      os << "the attitude is at a singularity of " << P::name
+         << " (G is singular): re-center the chart or use another parameterization";
+    } else {
+      os << "the rates qdot have a non-finite entry or overflowed";
+    }
+    throw NonFiniteError(os.str());
+  }
+
+  MassProperties<S> mp_;
+};
+
+}  // namespace tumble

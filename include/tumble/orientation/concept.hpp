@@ -1,0 +1,75 @@
+#pragma once
+// The common interface of every orientation parameterization, written once as a C++20 concept.
+//
+// Reference: ../shared/reference/rigid-body-chapter.md (the "reference chapter"), Sec. 1.1.
+// Conventions (docs/conventions.md): R maps body components to inertial ones, r_F = R r_f;
+// omega is the angular velocity of the body frame relative to the inertial frame, expressed in
+// the body frame, omega = G(theta) thetadot (Eq. 1.5).
+//
+// A parameterization is a stateless type P with
+//   P::size                      number of coordinates (3, or 4 for Euler parameters)
+//   P::has_constraint            true when the coordinates obey one holonomic constraint
+//   P::name                      a readable name ("EulerZYX", "EulerParameters", ...)
+//   P::Coords<S>                 Eigen::Matrix<S, size, 1>
+// and, for every scalar type S, the static functions
+//   rotation(theta)              R(theta)                                              (Eq. 1.1)
+//   G(theta)                     3 x size, omega = G thetadot                           (Eq. 1.5)
+//   Gdot_thetadot(theta, td)     the product Gdot thetadot of Eq. (1.10)
+//   thetadot(theta, omega)       the inverse map; for constrained sets the rate tangent to the
+//                                constraint
+//   thetaddot(theta, td, alpha)  parameter accelerations for a body angular acceleration alpha:
+//                                G thetaddot = alpha - Gdot thetadot (Eq. 1.10), plus the
+//                                constraint's second derivative for constrained sets
+//   from_rotation(R), to_quaternion(theta), from_quaternion(q)   conversions
+//   singularity_distance(theta)  angle in rad to the nearest attitude where G is singular
+//                                (+infinity when there is none)
+//   canonical(theta)             the canonical representative (normalized quaternion, MRP
+//                                shadow set, ...), the identity map where there is no choice
+// and, when has_constraint, constraint(theta) (zero on the constraint manifold).
+
+#include <concepts>
+#include <string_view>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "tumble/core/types.hpp"
+
+namespace tumble {
+
+template <class P>
+concept Orientation =
+    requires {
+      { P::size } -> std::convertible_to<int>;
+      { P::has_constraint } -> std::convertible_to<bool>;
+      { P::name } -> std::convertible_to<std::string_view>;
+      typename P::template Coords<double>;
+    } && (P::size == 3 || P::size == 4) &&
+    requires(const typename P::template Coords<double>& theta, const Vector3<double>& w,
+             const Matrix3<double>& R, const Eigen::Quaterniond& q) {
+      { P::rotation(theta) } -> std::same_as<Matrix3<double>>;
+      { P::G(theta) } -> std::same_as<Matrix<double, 3, P::size>>;
+      { P::Gdot_thetadot(theta, theta) } -> std::same_as<Vector3<double>>;
+      { P::thetadot(theta, w) } -> std::same_as<typename P::template Coords<double>>;
+      { P::thetaddot(theta, theta, w) } -> std::same_as<typename P::template Coords<double>>;
+      { P::from_rotation(R) } -> std::same_as<typename P::template Coords<double>>;
+      { P::to_quaternion(theta) } -> std::same_as<Eigen::Quaterniond>;
+      { P::from_quaternion(q) } -> std::same_as<typename P::template Coords<double>>;
+      { P::singularity_distance(theta) } -> std::same_as<double>;
+      { P::canonical(theta) } -> std::same_as<typename P::template Coords<double>>;
+    } &&
+    (!P::has_constraint || requires(const typename P::template Coords<double>& theta) {
+      { P::constraint(theta) } -> std::same_as<double>;
+    });
+
+/// Convert the coordinates of one parameterization into another through the unit quaternion
+/// (exact up to rounding; no trigonometric round trip through a matrix).
+/// Usage: `auto g = convert<RodriguesParameters, EulerZYX>(angles);`
+template <Orientation To, Orientation From, class Derived>
+[[nodiscard]] auto convert(const Eigen::MatrixBase<Derived>& theta) {
+  using S = typename Derived::Scalar;
+  const typename From::template Coords<S> from = theta;
+  return To::from_quaternion(From::to_quaternion(from));
+}
+
+}  // namespace tumble
