@@ -13,13 +13,14 @@ enum class ReferencePoint {
   offset,    ///< the body frame sits anywhere: the coupling terms are computed
 };
 
-template <class S, ReferencePoint Ref = ReferencePoint::centroid> struct BodyKinematics {
-  static constexpr ReferencePoint reference = Ref;
+/// The kinematic state of a body, whatever its reference point: what loads between two bodies
+/// read.
+template <class S> struct KinematicsView {
   const MassProperties<S>* mass_properties = nullptr;
-  Vector3<S> position;  ///< r_oc, inertial components
-  Vector3<S> velocity;  ///< rdot_oc, inertial components
-  Matrix3<S> rotation;  ///< R, body -> inertial (valid when the loads asked for it)
-  Vector3<S> omega;     ///< angular velocity, body components (Eq. 1.5)
+  Vector3<S> position = Vector3<S>::Zero();  ///< r_oc, inertial components
+  Vector3<S> velocity = Vector3<S>::Zero();  ///< rdot_oc, inertial components
+  Matrix3<S> rotation = Matrix3<S>::Identity();  ///< R, body -> inertial (when loads need it)
+  Vector3<S> omega = Vector3<S>::Zero();  ///< angular velocity, body components (Eq. 1.5)
 
   /// Eq. (1.1): r_op = r_oc + R r_cp.
   [[nodiscard]] Vector3<S> point_position(const Vector3<S>& r) const {
@@ -29,6 +30,13 @@ template <class S, ReferencePoint Ref = ReferencePoint::centroid> struct BodyKin
   [[nodiscard]] Vector3<S> point_velocity(const Vector3<S>& r) const {
     return velocity + rotation * omega.cross(r);
   }
+};
+
+/// The same, with the body's reference point known at compile time (what single-body loads
+/// read, so that e.g. gravity on a centroidal body skips its moment).
+template <class S, ReferencePoint Ref = ReferencePoint::centroid>
+struct BodyKinematics : KinematicsView<S> {
+  static constexpr ReferencePoint reference = Ref;
 };
 
 }  // namespace tumble

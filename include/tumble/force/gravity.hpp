@@ -20,6 +20,16 @@ class UniformGravity {
   }
   [[nodiscard]] const Vector3<double>& g() const { return g_; }
 
+  /// V = -m g . r_og (zero at the inertial origin).
+  template <class S, ReferencePoint Ref>
+  [[nodiscard]] S potential_energy(const BodyKinematics<S, Ref>& k) const {
+    Vector3<S> rg = k.position;
+    if constexpr (Ref == ReferencePoint::offset) {
+      rg = k.point_position(k.mass_properties->centroid());
+    }
+    return -k.mass_properties->mass() * detail::cast<S>(g_).dot(rg);
+  }
+
   static constexpr bool needs_rotation(ReferencePoint ref) { return ref == ReferencePoint::offset; }
 
   template <class S, ReferencePoint Ref>

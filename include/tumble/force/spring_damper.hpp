@@ -76,6 +76,15 @@ class SpringDamper {
     w.add_force(k.rotation, r, f);
   }
 
+  /// Elastic energy 1/2 k (L - L0)^2.
+  template <class S, ReferencePoint Ref>
+  [[nodiscard]] S potential_energy(const BodyKinematics<S, Ref>& k) const {
+    using std::sqrt;
+    const Vector3<S> d = detail::cast<S>(anchor_) - k.point_position(detail::cast<S>(point_));
+    const S stretch = sqrt(d.squaredNorm()) - S(sd_.rest_length);
+    return S(0.5) * S(sd_.stiffness) * stretch * stretch;
+  }
+
   [[nodiscard]] const SpringDamperParameters& parameters() const { return sd_; }
 
  private:
