@@ -1,0 +1,11 @@
+#pragma once
+// tumble's integration module: everything that needs SUNDIALS CVODE (link tumble::cvode).
+//
+//   tumble::Cvode<System>      the CVODE integrator of y' = f(t, y) (integrate/cvode.hpp)
+//   tumble::CvodeOptions       method, tolerances, step and solver options, projection
+//   tumble::CvodeStatistics    counters
+//   tumble::IntegrationError   CVODE failure; tumble::RecoverableError for callbacks
+//                              (integrate/errors.hpp, which needs no SUNDIALS)
+
+#include "tumble/integrate/cvode.hpp"
+#include "tumble/integrate/errors.hpp"
