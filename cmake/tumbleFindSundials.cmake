@@ -7,7 +7,7 @@
 # We take, for each component, the first of SUNDIALS::<c>, SUNDIALS::<c>_shared,
 # SUNDIALS::<c>_static that exists. Without a config file we fall back to find_library.
 set(TUMBLE_SUNDIALS_COMPONENTS cvode nvecserial sunmatrixdense sunlinsoldense sunmatrixband
-    sunlinsolband sunlinsolspgmr)
+    sunlinsolband sunlinsolspgmr sunnonlinsolfixedpoint)
 
 macro(tumble_find_sundials out_var)
   set(${out_var} FALSE)
