@@ -4,8 +4,10 @@
 //   tumble::Cvode<System>      the CVODE integrator of y' = f(t, y) (integrate/cvode.hpp)
 //   tumble::CvodeOptions       method, tolerances, step and solver options, projection
 //   tumble::CvodeStatistics    counters
+//   tumble::SceneIntegrator    a Scene integrated with CVODE (charts, projection, events)
 //   tumble::IntegrationError   CVODE failure; tumble::RecoverableError for callbacks
 //                              (integrate/errors.hpp, which needs no SUNDIALS)
 
 #include "tumble/integrate/cvode.hpp"
 #include "tumble/integrate/errors.hpp"
+#include "tumble/integrate/scene_integrator.hpp"

@@ -308,31 +308,26 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
     return (B::Param::has_constraint || ...);
   }
 
-  /// Project the Euler parameters of y onto |p| = 1 and their rates onto p.pdot = 0 (the
-  /// orthogonal projection onto the constraint manifold); corr = projected - y. The error
-  /// estimate `err`, when given, loses its component normal to the manifold as well.
-  template <class Y, class C> void project(Y&& y, C&& corr, double* err = nullptr) const {
-    for (Eigen::Index i = 0; i < corr.size(); ++i) {
-      corr[i] = 0.0;
-    }
+  /// The correction `corr` that takes y onto the constraint manifold of the Euler parameters:
+  /// p -> p/|p| and pdot -> pdot - (p.pdot) p (the orthogonal projection); zero elsewhere.
+  /// When `err` is not empty (the local error estimate) its component normal to the manifold is
+  /// removed too, as CVODE's projection expects.
+  template <class Y, class C, class E> void project(const Y& y, C&& corr, E&& err) const {
+    corr.setZero();
     for_each_entry([&](const auto& e) {
       using Body = std::remove_cvref_t<decltype(e.body)>;
       if constexpr (Body::Param::has_constraint) {
         const int ip = e.offset + 3, iv = e.offset + Body::nq + 3;
-        Vector4<double> p = y.template segment<4>(ip);
-        Vector4<double> pd = y.template segment<4>(iv);
+        const Vector4<double> p = y.template segment<4>(ip);
+        const Vector4<double> pd = y.template segment<4>(iv);
         const Vector4<double> pn = p / p.norm();
-        const Vector4<double> pdn = pd - pn.dot(pd) * pn;
-        for (int k = 0; k < 4; ++k) {
-          corr[ip + k] = pn(k) - p(k);
-          corr[iv + k] = pdn(k) - pd(k);
-          y[ip + k] = pn(k);
-          y[iv + k] = pdn(k);
-        }
-        if (err != nullptr) {
-          Eigen::Map<Vector4<double>> ep(err + ip), ev(err + iv);
-          ep -= pn.dot(ep) * pn;
-          ev -= pn.dot(ev) * pn;
+        corr.template segment<4>(ip) = pn - p;
+        corr.template segment<4>(iv) = -pn.dot(pd) * pn;
+        if (err.size() > 0) {
+          const Vector4<double> ep = err.template segment<4>(ip);
+          const Vector4<double> ev = err.template segment<4>(iv);
+          err.template segment<4>(ip) = ep - pn.dot(ep) * pn;
+          err.template segment<4>(iv) = ev - pn.dot(ev) * pn;
         }
       }
     });
