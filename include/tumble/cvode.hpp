@@ -11,3 +11,4 @@
 #include "tumble/integrate/cvode.hpp"
 #include "tumble/integrate/errors.hpp"
 #include "tumble/integrate/scene_integrator.hpp"
+#include "tumble/tumble.hpp"

@@ -528,7 +528,7 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
       }
     }
   }
-  void apply_loads(double t) { (apply_load_type<L>(t), ...); }
+  void apply_loads([[maybe_unused]] double t) { (apply_load_type<L>(t), ...); }
 
   /// A one-body load on the body with global index id, with its typed kinematics.
   template <class Load> void apply_on(const Load& load, double t, int id) {

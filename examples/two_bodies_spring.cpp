@@ -1,0 +1,53 @@
+// Two bodies joined by a spring: momentum conservation with mixed parameterizations.
+//
+// Problem: a box framed at its centroid (Euler angles ZYX) and a rod framed at one end
+// (rotation vector, ReferencePoint::offset) are joined by a linear spring between two body
+// points, thrown with different velocities and spins, in free space.
+// Equations: each body obeys M qddot = f_v + Q (reference chapter Eq. 1.32); the spring adds equal
+// and opposite forces at its two attachment points (Eq. 1.28), so the total linear momentum and,
+// the spring force being central, the total angular momentum about any fixed point are
+// conserved; without damping the energy T + V is conserved too. The Euler angles pass through
+// gimbal lock and the rotation vector through full turns: the scene re-centers their charts.
+// Units: SI.
+
+#include <cstdio>
+
+#include "tumble/cvode.hpp"
+
+int main() {
+  using namespace tumble;
+  using Box = RigidBody<EulerZYX>;
+  using Rod = RigidBody<RotationVector, ReferencePoint::offset>;
+  Scene<Bodies<Box, Rod>, Loads<SpringDamperBetween>> scene;
+  const auto box = scene.add(Box(MassProperties<>::about_centroid(
+                                 2.0, Eigen::Vector3d(0.02, 0.03, 0.04).asDiagonal())),
+                             {.position = {0, 0, 0}, .velocity = {0.1, 0, 0}, .omega = {1, 3, -2}});
+  const auto rod = scene.add(
+      Rod(MassProperties<>::about_centroid(0.5, Eigen::Vector3d(1e-5, 0.0105, 0.0105).asDiagonal(),
+                                           Eigen::Vector3d(0.25, 0, 0))),
+      {.position = {0.8, 0, 0}, .velocity = {-0.2, 0.3, 0}, .omega = {4, 0, 2}});
+  scene.add_load(box, rod,
+                 SpringDamperBetween({0.1, 0, 0}, {0, 0, 0},
+                                     {.stiffness = 50.0, .damping = 0.0, .rest_length = 0.5}));
+
+  SceneIntegratorOptions options;
+  options.cvode.method = CvodeMethod::adams;
+  options.cvode.rtol = 1e-10;
+  options.cvode.atol = 1e-12;
+  options.cvode.max_steps = 100000;
+  SceneIntegrator integrator(scene, 0.0, options);
+  const Eigen::VectorXd y0 = scene.initial_state();
+  const Eigen::Vector3d p0 = scene.linear_momentum(y0), h0 = scene.angular_momentum(y0);
+  const double e0 = scene.energy(y0);
+  const Eigen::VectorXd y = integrator.advance(20.0);
+  const auto s = integrator.statistics();
+  std::printf("after 20 s: |dp|/|p| = %.2e, |dh|/|h| = %.2e, |dE|/E = %.2e\n",
+              (scene.linear_momentum(y) - p0).norm() / p0.norm(),
+              (scene.angular_momentum(y) - h0).norm() / h0.norm(),
+              std::abs(scene.energy(y) - e0) / e0);
+  std::printf("chart switches: box (Euler ZYX) %ld, rod (rotation vector) %ld\n",
+              scene.chart_switches(box), scene.chart_switches(rod));
+  std::printf("CVODE: %ld steps, %ld right-hand sides, %ld restarts\n", s.steps, s.rhs_evals,
+              s.reinits);
+  return 0;
+}

@@ -1,0 +1,33 @@
+#pragma once
+// tumble: rigid-body equations of motion in generalized coordinates (Eigen only).
+// For time integration with SUNDIALS CVODE include "tumble/cvode.hpp" and link tumble::cvode.
+//
+//   orientation/   EulerAngles<a1,a2,a3> (12 aliases), EulerParameters, RodriguesParameters,
+//                  ModifiedRodriguesParameters, RotationVector; the Orientation concept; convert
+//   body/          MassProperties, RigidBody<P, ReferencePoint, Scalar>, Wrench, kinematics
+//   force/         UniformGravity, PointForce, BodyMoment, SpringDamper, SpringDamperBetween,
+//                  UserForce, UserCoupling; total_wrench, generalized_force, accelerations
+//   scene/         Scene<Bodies<...>, Loads<...>>, charts of three-parameter sets
+
+#include "tumble/body/kinematics.hpp"
+#include "tumble/body/mass_properties.hpp"
+#include "tumble/body/rigid_body.hpp"
+#include "tumble/body/wrench.hpp"
+#include "tumble/core/errors.hpp"
+#include "tumble/core/math.hpp"
+#include "tumble/core/types.hpp"
+#include "tumble/force/concept.hpp"
+#include "tumble/force/coupling.hpp"
+#include "tumble/force/gravity.hpp"
+#include "tumble/force/loads.hpp"
+#include "tumble/force/point_force.hpp"
+#include "tumble/force/spring_damper.hpp"
+#include "tumble/force/user_force.hpp"
+#include "tumble/orientation/concept.hpp"
+#include "tumble/orientation/euler_angles.hpp"
+#include "tumble/orientation/euler_parameters.hpp"
+#include "tumble/orientation/modified_rodrigues.hpp"
+#include "tumble/orientation/rodrigues.hpp"
+#include "tumble/orientation/rotation_vector.hpp"
+#include "tumble/scene/chart.hpp"
+#include "tumble/scene/scene.hpp"
