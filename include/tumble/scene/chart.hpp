@@ -14,6 +14,8 @@
 // gimbal lock, proper Euler angles at 45 deg from theta2 in {0, pi}, Gibbs at phi = 90 deg, the
 // rotation vector at phi = 180 deg and MRP at |sigma| = 1.
 
+#include <numbers>
+
 #include "tumble/core/types.hpp"
 #include "tumble/orientation/concept.hpp"
 
@@ -33,6 +35,10 @@ template <Orientation P> struct Chart {
   static Coords center() {
     if constexpr (requires { P::template chart_center<double>(); }) {
       return P::template chart_center<double>();
+    } else if constexpr (requires { P::is_tait_bryan; }) {
+      // Euler angles: Tait-Bryan sequences are farthest from gimbal lock at theta2 = 0, proper
+      // sequences (singular at theta2 = 0 and pi) at theta2 = pi/2.
+      return Coords(0.0, P::is_tait_bryan ? 0.0 : std::numbers::pi / 2, 0.0);
     } else {
       return Coords::Zero();
     }

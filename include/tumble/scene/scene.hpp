@@ -532,9 +532,9 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
 
   /// A one-body load on the body with global index id, with its typed kinematics.
   template <class Load> void apply_on(const Load& load, double t, int id) {
-    const auto [group, local] = locations_[id];
-    visit_group(group, [&](auto& entries) {
-      auto& e = entries[local];
+    const Location loc = locations_[id];
+    visit_group(loc.group, [&](auto& entries) {
+      auto& e = entries[loc.local];
       load.apply(t, e.kin, wrench_[id]);
     });
   }
@@ -612,9 +612,9 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
           v += a.load.potential_energy(*views_[a.a], *views_[a.b]);
         }
       } else {
-        const auto [group, local] = locations_[a.a];
-        visit_group(group, [&](auto& entries) {
-          const auto& k = entries[local].kin;
+        const Location loc = locations_[a.a];
+        visit_group(loc.group, [&](auto& entries) {
+          const auto& k = entries[loc.local].kin;
           if constexpr (requires { a.load.potential_energy(k); }) {
             v += a.load.potential_energy(k);
           }
