@@ -23,6 +23,8 @@ namespace tumble {
 
 /// Options of a SceneIntegrator: CVODE's, plus how Euler parameters keep their norm.
 struct SceneIntegratorOptions {
+  /// CVODE's options. With CvodeLinearSolver::band and the bandwidths left at -1, the scene's
+  /// own half-bandwidth is used (Scene::half_bandwidth).
   CvodeOptions cvode{};
   /// With BDF: project Euler parameters onto their constraint after each step. With Adams the
   /// scene's Baumgarte stabilization is used (CVODE cannot project with Adams).
@@ -134,6 +136,10 @@ template <class SceneT> class SceneIntegrator {
     const bool bdf = options.cvode.method == CvodeMethod::bdf;
     const bool project = bdf && options.project_quaternions && SceneT::has_constraints();
     options.cvode.projection = project;
+    if (options.cvode.linear_solver == CvodeLinearSolver::band &&
+        options.cvode.upper_bandwidth < 0 && options.cvode.lower_bandwidth < 0) {
+      options.cvode.upper_bandwidth = options.cvode.lower_bandwidth = scene.half_bandwidth();
+    }
     scene.set_constraint_stabilization(!project);
     return Cvode<detail::SceneSystem<SceneT>>(detail::SceneSystem<SceneT>(scene), t0, y,
                                               std::move(options.cvode));

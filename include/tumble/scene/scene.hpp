@@ -303,6 +303,39 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
     return changed;
   }
 
+  /// The half-bandwidth of the Jacobian df/dy in the scene's state ordering: a body's block
+  /// [q; qdot] is dense, and a coupling between bodies a and b links their two blocks. For a chain
+  /// of bodies added in order this stays constant as the chain grows, so CVODE's band solver
+  /// (with banded difference quotients) costs O(N) per Jacobian and per solve.
+  [[nodiscard]] int half_bandwidth() const {
+    std::vector<std::pair<int, int>> block(locations_.size());  // [first, last] index per body
+    for_each_entry([&](const auto& e) {
+      using Body = std::remove_cvref_t<decltype(e.body)>;
+      block[e.id] = {e.offset, e.offset + 2 * Body::nq - 1};
+    });
+    int bw = 0;
+    for (const auto& [first, last] : block) {
+      bw = std::max(bw, last - first);
+    }
+    auto couple = [&](int a, int b) {
+      bw = std::max({bw, block[b].second - block[a].first, block[a].second - block[b].first});
+    };
+    std::apply(
+        [&](const auto&... attached) {
+          (
+              [&] {
+                for (const auto& at : attached) {
+                  if (at.b >= 0) {
+                    couple(at.a, at.b);
+                  }
+                }
+              }(),
+              ...);
+        },
+        loads_);
+    return bw;
+  }
+
   /// True if the scene has constrained coordinates (Euler parameters).
   [[nodiscard]] static constexpr bool has_constraints() {
     return (B::Param::has_constraint || ...);
