@@ -62,10 +62,18 @@ template <class S> [[nodiscard]] S pi() {
   return S(V(3.141592653589793238462643383279502884L));
 }
 
-/// atan for scalars that only provide atan2 (Eigen's AutoDiffScalar).
+/// atan for scalars that only provide atan2 (Eigen's AutoDiffScalar). For AD scalars the 1 gets
+/// zero derivatives sized like those of x: Eigen's atan2 subtracts the two derivative vectors
+/// without resizing the empty one of a constant (an assertion failure otherwise).
 template <class S> [[nodiscard]] S atan(const S& x) {
   using std::atan2;
-  return atan2(x, S(1));
+  if constexpr (std::is_arithmetic_v<S>) {
+    return atan2(x, S(1));
+  } else {
+    S one(1);
+    one.derivatives().setZero(x.derivatives().size());
+    return atan2(x, one);
+  }
 }
 
 /// Horner evaluation of c[0] + c[1] x + c[2] x^2 + ... with coefficients given in long double

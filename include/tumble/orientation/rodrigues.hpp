@@ -1,0 +1,139 @@
+#pragma once
+// Rodrigues parameters (the Gibbs vector): g = n tan(phi/2) for the rotation by the angle phi
+// about the unit axis n.
+//
+// Reference: ../shared/reference/rigid-body-chapter.md (the "reference chapter"), Sec. 1.1:
+// R (Eq. 1.1), G with omega = G thetadot (Eq. 1.5), the product Gdot thetadot (Eq. 1.10).
+//
+// Conventions (docs/conventions.md): R maps body components to inertial ones, r_F = R r_f, and
+// omega is the body's angular velocity in BODY components, S(omega) = R^T Rdot. With the unit
+// quaternion (e0, e) = (cos(phi/2), n sin(phi/2)), g = e / e0, and with gg = g.g
+//     R     = I + 2 / (1 + gg) (S(g) + S(g)^2)                                    (Eq. 1.1)
+//     G     = 2 / (1 + gg) (I - S(g)),          omega = G gdot                      (Eq. 1.5)
+//     G^-1  = 1/2 (I + S(g) + g g^T),           gdot  = G^-1 omega
+//     Gdot gdot = -(2 g.gdot / (1 + gg)) omega                                      (Eq. 1.10)
+// (from G = c (I - S(g)) with c = 2 / (1 + gg): Gdot gdot = cdot (I - S(g)) gdot - c gdot x gdot
+// = (cdot / c) omega, and cdot / c = -2 g.gdot / (1 + gg)). Every formula is rational in g: no
+// trigonometry, no small-angle branch, exact at g = 0.
+//
+// Singular attitudes: the rotations by phi = pi (180 degrees), where e0 = 0 and |g| -> infinity.
+// G^-1 grows like |g|^2 there, i.e. a finite omega needs an unbounded gdot. Every attitude off
+// that set has exactly one Gibbs vector (q and -q give the same g = e / e0), so canonical() is
+// the identity. singularity_distance() = pi - phi with phi = 2 atan|g|, computed
+// as 2 atan(1 / |g|) for |g| > 1 so that it keeps full relative accuracy close to the singularity.
+//
+// \warning Near 180 degrees g is huge and ill-conditioned: a rotation by 179.9999 degrees has
+//          |g| ~ 1.1e6, an absolute rounding error eps in e0 is a relative error ~eps |g| in g,
+//          and gdot = G^-1 omega grows like |g|^2. A simulation re-centers the chart well before
+//          (see DESIGN.md), driven by singularity_distance().
+// \warning from_quaternion() and from_rotation() throw NonFiniteError (a std::domain_error)
+//          for a rotation by exactly 180 degrees (e0 == 0): it has no Gibbs vector. Arbitrarily
+//          close rotations give huge but finite g.
+
+#include <cmath>
+#include <string_view>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "tumble/core/errors.hpp"
+#include "tumble/core/math.hpp"
+#include "tumble/core/types.hpp"
+#include "tumble/orientation/concept.hpp"
+#include "tumble/orientation/euler_parameters.hpp"
+
+namespace tumble {
+
+struct RodriguesParameters {
+  static constexpr int size = 3;
+  static constexpr bool has_constraint = false;
+  static constexpr std::string_view name = "RodriguesParameters";
+  template <class S> using Coords = Vector3<S>;
+
+  /// R = I + 2 / (1 + g.g) (S(g) + S(g)^2)   (body -> inertial; Eq. 1.1).
+  template <class S> [[nodiscard]] static Matrix3<S> rotation(const Coords<S>& g) {
+    const S c = S(2) / (S(1) + g.squaredNorm());
+    const Matrix3<S> sg = skew(g);
+    return Matrix3<S>::Identity() + c * (sg + sg * sg);
+  }
+
+  /// G = 2 / (1 + g.g) (I - S(g)), omega = G gdot in body components   (Eq. 1.5).
+  template <class S> [[nodiscard]] static Matrix3<S> G(const Coords<S>& g) {
+    const S c = S(2) / (S(1) + g.squaredNorm());
+    return c * (Matrix3<S>::Identity() - skew(g));
+  }
+
+  /// Gdot gdot = -(2 g.gdot / (1 + g.g)) G gdot   (Eq. 1.10).
+  template <class S>
+  [[nodiscard]] static Vector3<S> Gdot_thetadot(const Coords<S>& g, const Coords<S>& gdot) {
+    const S gg1 = S(1) + g.squaredNorm();
+    const S c = S(2) / gg1;
+    const Vector3<S> omega = c * (gdot - g.cross(gdot));
+    const S f = S(-2) * g.dot(gdot) / gg1;
+    return f * omega;
+  }
+
+  /// gdot = 1/2 (I + S(g) + g g^T) omega = G^-1 omega.
+  template <class S>
+  [[nodiscard]] static Coords<S> thetadot(const Coords<S>& g, const Vector3<S>& omega) {
+    return S(0.5) * (omega + g.cross(omega) + g.dot(omega) * g);
+  }
+
+  /// gddot = G^-1 (alpha - Gdot gdot)   (Eq. 1.10 solved for the parameter accelerations).
+  template <class S>
+  [[nodiscard]] static Coords<S> thetaddot(const Coords<S>& g, const Coords<S>& gdot,
+                                           const Vector3<S>& alpha) {
+    return thetadot(g, Vector3<S>(alpha - Gdot_thetadot(g, gdot)));
+  }
+
+  /// Through the quaternion of Shepperd's method (EulerParameters::from_rotation), which stays
+  /// accurate near 180 degrees where vex(R - R^T) / (1 + tr R) would cancel.
+  /// \throws NonFiniteError for a rotation by exactly 180 degrees.
+  template <class S> [[nodiscard]] static Coords<S> from_rotation(const Matrix3<S>& r) {
+    return from_quaternion(EulerParameters::to_quaternion(EulerParameters::from_rotation(r)));
+  }
+
+  /// q = (1, g) / sqrt(1 + g.g), with e0 > 0.
+  template <class S> [[nodiscard]] static Eigen::Quaternion<S> to_quaternion(const Coords<S>& g) {
+    using std::sqrt;
+    const S f = S(1) / sqrt(S(1) + g.squaredNorm());
+    return Eigen::Quaternion<S>(f, f * g(0), f * g(1), f * g(2));  // w-first constructor
+  }
+
+  /// g = e / e0. The ratio does not depend on the sign or the norm of q, so q need not be
+  /// normalized.
+  /// \throws NonFiniteError when e0 == 0 (a rotation by exactly 180 degrees, or q = 0).
+  template <class S> [[nodiscard]] static Coords<S> from_quaternion(const Eigen::Quaternion<S>& q) {
+    if (detail::value(q.w()) == 0) {
+      throw NonFiniteError(
+          "RodriguesParameters: the quaternion has e0 = 0, a rotation by 180 degrees, where the "
+          "Gibbs vector n tan(phi/2) is infinite");
+    }
+    const S f = S(1) / q.w();
+    return Coords<S>(f * q.x(), f * q.y(), f * q.z());
+  }
+
+  /// pi - phi with phi = 2 atan|g| in [0, pi): the angle to the nearest rotation by 180 degrees.
+  /// For |g| > 1 it is evaluated as 2 atan(1 / |g|), which does not cancel near the singularity.
+  /// At g = 0 it returns pi without taking sqrt(0) (whose AD derivative is not finite; the
+  /// distance is not differentiable there anyway).
+  template <class S> [[nodiscard]] static S singularity_distance(const Coords<S>& g) {
+    using std::sqrt;
+    const S gg = g.squaredNorm();
+    if (detail::value(gg) == 0) {
+      return detail::pi<S>();
+    }
+    const S n = sqrt(gg);
+    if (detail::value(n) <= 1) {
+      return detail::pi<S>() - S(2) * detail::atan<S>(n);
+    }
+    return S(2) * detail::atan<S>(S(1) / n);
+  }
+
+  /// The identity: every attitude off 180 degrees has exactly one Gibbs vector.
+  template <class S> [[nodiscard]] static Coords<S> canonical(const Coords<S>& g) { return g; }
+};
+
+static_assert(Orientation<RodriguesParameters>);
+
+}  // namespace tumble
