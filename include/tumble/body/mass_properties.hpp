@@ -71,6 +71,13 @@ template <class S = double> class MassProperties {
     first_moment_ = mass_ * centroid_;
     inertia_reference_ = inertia_centroid_ + parallel_axis(mass_, centroid_);
     inertia_inverse_ = inertia_centroid_.inverse();
+    // A positive definite inertia can still be too small (or too badly scaled) for its inverse
+    // to be representable, e.g. diag(1e-320, ...): reject it rather than return inf later.
+    if (!detail::all_finite(inertia_inverse_) || !detail::all_finite(inertia_reference_)) {
+      throw std::invalid_argument(
+          "tumble::MassProperties: the inertia tensor about the centroid is positive definite "
+          "but its inverse (or the parallel-axis inertia) overflows; rescale the units");
+    }
   }
 
   static Matrix3<double> values(const Matrix3<S>& m) {

@@ -18,7 +18,8 @@ template <class Body, ForceElement... F>
                                                          const typename Body::Coords& q,
                                                          const typename Body::Coords& qdot,
                                                          const F&... elements) {
-  const auto k = body.template kinematics<loads_need_rotation<Body, F...>>(q, qdot);
+  [[maybe_unused]] const auto k =  // unused when there are no elements
+      body.template kinematics<loads_need_rotation<Body, F...>>(q, qdot);
   Wrench<typename Body::Scalar> w;
   (elements.apply(t, k, w), ...);
   return w;

@@ -41,6 +41,11 @@ Vector3<S> spring_damper_force(const SpringDamperParameters& sd, const Vector3<S
     return k * d + c * dv;
   }
   const S len2 = d.squaredNorm();
+  if (!detail::isfinite(len2)) {
+    throw NonFiniteError(
+        "tumble::SpringDamper: the distance between the two ends is non-finite (a non-finite "
+        "position in the state, or ends too far apart to represent)");
+  }
   if (!(detail::value(len2) > 0)) {
     throw NonFiniteError(
         "tumble::SpringDamper: the two ends coincide, so the direction of a spring with a "
