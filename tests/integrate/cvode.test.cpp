@@ -4,9 +4,9 @@
 // same problem (analytic versus difference-quotient Jacobian; dense, band and GMRES), and
 // published reference values (Robertson at t = 40, from the CVODE examples).
 //
-// This file replaces the global operator new/delete with counting versions (see the bottom of
-// the "allocation" section) and builds Eigen with EIGEN_RUNTIME_NO_MALLOC, to prove that the
-// callbacks CVODE calls during a run allocate nothing.
+// The allocation test counts operator new calls with integrate/alloc_counter.hpp (the counting
+// operator new/delete of the whole test executable) and builds Eigen with EIGEN_RUNTIME_NO_MALLOC,
+// to prove that the callbacks CVODE calls during a run allocate nothing.
 
 // Must precede every Eigen include: lets the allocation test forbid Eigen heap allocations.
 #define EIGEN_RUNTIME_NO_MALLOC
@@ -14,10 +14,7 @@
 #include "tumble/integrate/cvode.hpp"
 
 #include <array>
-#include <atomic>
 #include <cmath>
-#include <cstdlib>
-#include <new>
 #include <numbers>
 #include <stdexcept>
 #include <string>
@@ -28,84 +25,9 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "integrate/alloc_counter.hpp"
 #include "support/catch.hpp"
 #include "tumble/integrate/errors.hpp"
-
-// ---- counting global operator new/delete (whole test executable) ------------------------------
-namespace {
-std::atomic<long> g_news{0};
-std::atomic<bool> g_counting{false};
-
-void* counted_malloc(std::size_t n) {
-  if (g_counting.load(std::memory_order_relaxed)) {
-    g_news.fetch_add(1, std::memory_order_relaxed);
-  }
-  return std::malloc(n == 0 ? 1 : n);
-}
-void* counted_aligned(std::size_t n, std::align_val_t a) {
-  if (g_counting.load(std::memory_order_relaxed)) {
-    g_news.fetch_add(1, std::memory_order_relaxed);
-  }
-  const auto al = static_cast<std::size_t>(a);
-  const std::size_t size = ((n == 0 ? 1 : n) + al - 1) / al * al;
-  return std::aligned_alloc(al, size);
-}
-
-// Out of line, so that GCC does not see free() applied to the result of an inlined operator new
-// (-Wmismatched-new-delete): the replacements below pair malloc with free by construction.
-[[gnu::noinline]] void release(void* p) noexcept { std::free(p); }
-
-/// Counts operator new calls and (through Eigen's runtime check) Eigen heap allocations while
-/// alive.
-struct AllocationCounter {
-  AllocationCounter() {
-    g_news = 0;
-    Eigen::internal::set_is_malloc_allowed(false);
-    g_counting = true;
-  }
-  ~AllocationCounter() { stop(); }
-  long stop() {
-    g_counting = false;
-    Eigen::internal::set_is_malloc_allowed(true);
-    return g_news.load();
-  }
-};
-}  // namespace
-
-void* operator new(std::size_t n) {
-  if (void* p = counted_malloc(n)) {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) {
-  if (void* p = counted_malloc(n)) {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return counted_malloc(n); }
-void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return counted_malloc(n); }
-void* operator new(std::size_t n, std::align_val_t a) {
-  if (void* p = counted_aligned(n, a)) {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n, std::align_val_t a) {
-  if (void* p = counted_aligned(n, a)) {
-    return p;
-  }
-  throw std::bad_alloc();
-}
-void operator delete(void* p) noexcept { release(p); }
-void operator delete[](void* p) noexcept { release(p); }
-void operator delete(void* p, std::size_t) noexcept { release(p); }
-void operator delete[](void* p, std::size_t) noexcept { release(p); }
-void operator delete(void* p, std::align_val_t) noexcept { release(p); }
-void operator delete[](void* p, std::align_val_t) noexcept { release(p); }
-void operator delete(void* p, std::size_t, std::align_val_t) noexcept { release(p); }
-void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { release(p); }
 
 using tumble::ConstVectorMap;
 using tumble::Cvode;
@@ -115,6 +37,7 @@ using tumble::CvodeOptions;
 using tumble::IntegrationError;
 using tumble::MatrixMap;
 using tumble::VectorMap;
+using tumble::test::AllocationCounter;
 
 namespace {
 
@@ -1016,16 +939,6 @@ TEST_CASE("a system can be held by reference", "[integrate][cvode]") {
 }
 
 // ---- allocation --------------------------------------------------------------------------------
-
-TEST_CASE("the counting operator new sees allocations", "[integrate][cvode]") {
-  AllocationCounter counter;
-  // A direct call of the replaceable function (a new-expression may legally be elided), kept
-  // alive through a volatile pointer.
-  void* volatile p = ::operator new(16);
-  const long n = counter.stop();
-  ::operator delete(p);
-  CHECK(n == 1);
-}
 
 TEST_CASE("no heap allocation during advance() once set up", "[integrate][cvode]") {
   SECTION("BDF, dense, analytic Jacobian") {
