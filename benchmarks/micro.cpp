@@ -1,0 +1,135 @@
+// tumble_micro: per-step micro-benchmarks of tumble's core assembly (issue 4, part 1), with
+// Google Benchmark. For every parameterization (the 12 Euler sequences, Euler parameters,
+// Rodrigues (Gibbs) parameters, modified Rodrigues parameters, the rotation vector) and both
+// reference points (centroid, offset) it times, in ns per call:
+//   rotation/<P>                        P::rotation, R (Eq. 1.1)
+//   G/<P>                               P::G (Eq. 1.5)
+//   mass_matrix/<P>/<ref>               RigidBody::mass_matrix, M (Eq. 1.23)
+//   centrifugal_coriolis/<P>/<ref>      RigidBody::centrifugal_coriolis, f_v (Eqs. 1.26-1.27)
+//   generalized_force/<P>/<ref>         tumble::generalized_force of gravity + a point force + a
+//                                       moment, Q (Eq. 1.31)
+//   qddot/<P>/<ref>                     RigidBody::accelerations(q, qdot, wrench) (Eq. 1.32)
+//   qddot_loads/<P>/<ref>               tumble::accelerations(body, t, q, qdot, loads...): the
+//                                       same loads as generalized_force, wrench included
+// R and G do not depend on the reference point and are timed once per parameterization. The
+// baselines (dense LU, hand-written closed form) are in micro_baselines.cpp, the peers in
+// micro_pinocchio.cpp and micro_mujoco.cpp; benchmarks/summarize_micro.py turns the JSON output
+// into the ratios issue 4 sets targets for.
+
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+#include "micro_common.hpp"
+
+namespace tumble::bench {
+namespace {
+
+template <class P> void register_orientation() {
+  const std::string name(P::name);
+  using Body = RigidBody<P, ReferencePoint::centroid, double>;
+  add("rotation/" + name, [](benchmark::State& st) {
+    static const States<Body> s;
+    run_cycling(st, [&](std::size_t i) { return P::rotation(Body::theta(s.q[i])); });
+  });
+  add("G/" + name, [](benchmark::State& st) {
+    static const States<Body> s;
+    run_cycling(st, [&](std::size_t i) { return P::G(Body::theta(s.q[i])); });
+  });
+}
+
+template <class P, ReferencePoint Ref> void register_body() {
+  using Body = RigidBody<P, Ref, double>;
+  const std::string suffix = std::string("/") + std::string(P::name) + "/" + ref_name(Ref);
+  add("mass_matrix" + suffix, [](benchmark::State& st) {
+    static const States<Body> s;
+    const Body body(mass_properties<Ref>());
+    run_cycling(st, [&](std::size_t i) { return body.mass_matrix(s.q[i]); });
+  });
+  add("centrifugal_coriolis" + suffix, [](benchmark::State& st) {
+    static const States<Body> s;
+    const Body body(mass_properties<Ref>());
+    run_cycling(st, [&](std::size_t i) { return body.centrifugal_coriolis(s.q[i], s.qdot[i]); });
+  });
+  add("generalized_force" + suffix, [](benchmark::State& st) {
+    static const States<Body> s;
+    const Body body(mass_properties<Ref>());
+    const LoadSet l;
+    run_cycling(st, [&](std::size_t i) {
+      return tumble::generalized_force(body, 0.0, s.q[i], s.qdot[i], l.gravity, l.force, l.moment);
+    });
+  });
+  add("qddot" + suffix, [](benchmark::State& st) {
+    static const States<Body> s;
+    const Body body(mass_properties<Ref>());
+    run_cycling(st,
+                [&](std::size_t i) { return body.accelerations(s.q[i], s.qdot[i], s.wrench[i]); });
+  });
+  add("qddot_loads" + suffix, [](benchmark::State& st) {
+    static const States<Body> s;
+    const Body body(mass_properties<Ref>());
+    const LoadSet l;
+    run_cycling(st, [&](std::size_t i) {
+      return tumble::accelerations(body, 0.0, s.q[i], s.qdot[i], l.gravity, l.force, l.moment);
+    });
+  });
+}
+
+template <class... P> void register_all() {
+  (register_orientation<P>(), ...);
+  (register_body<P, ReferencePoint::centroid>(), ...);
+  (register_body<P, ReferencePoint::offset>(), ...);
+}
+
+}  // namespace
+
+void register_tumble() {
+  // The loop itself (load an index, keep a result): what every number below includes.
+  add("loop_overhead", [](benchmark::State& st) {
+    const auto& raw = raw_states();
+    run_cycling(st, [&](std::size_t i) { return raw[i].omega; });
+  });
+  register_all<EulerParameters, RodriguesParameters, ModifiedRodriguesParameters, RotationVector,
+               EulerXYZ, EulerXZY, EulerYXZ, EulerYZX, EulerZXY, EulerZYX, EulerXYX, EulerXZX,
+               EulerYXY, EulerYZY, EulerZXZ, EulerZYZ>();
+}
+
+}  // namespace tumble::bench
+
+namespace {
+constexpr const char* kCompiler =
+#if defined(__clang__)
+    "clang " __clang_version__;
+#elif defined(__GNUC__)
+    "gcc " __VERSION__;
+#else
+    "unknown";
+#endif
+}  // namespace
+
+int main(int argc, char** argv) {
+  tumble::bench::register_tumble();
+  tumble::bench::register_baselines();
+#ifdef TUMBLE_BENCH_HAVE_PINOCCHIO
+  tumble::bench::register_pinocchio();
+#endif
+#ifdef TUMBLE_BENCH_HAVE_MUJOCO
+  tumble::bench::register_mujoco();
+#endif
+  benchmark::AddCustomContext("tumble_compiler", kCompiler);
+#ifdef TUMBLE_BENCH_FLAGS
+  benchmark::AddCustomContext("tumble_flags", TUMBLE_BENCH_FLAGS);
+#endif
+#ifdef NDEBUG
+  benchmark::AddCustomContext("tumble_ndebug", "yes");
+#else
+  benchmark::AddCustomContext("tumble_ndebug", "no (assertions on: not a Release build)");
+#endif
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) {
+    return 1;
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

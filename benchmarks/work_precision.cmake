@@ -1,0 +1,71 @@
+# tumble_bench: the work-precision driver and scaling study, the README's main job:
+#   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j2 --target tumble_bench
+#   ./build/benchmarks/tumble_bench            # --full for the complete sweep, --help for options
+# Included by benchmarks/CMakeLists.txt, in its scope: it uses the Pinocchio detection there
+# (TUMBLE_BENCH_HAVE_PINOCCHIO, target tumble_bench_pinocchio) when it exists.
+#
+# The results (CSV, PNG, summary.txt) go to ${PROJECT_BINARY_DIR}/benchmark-results unless
+# --out says otherwise. The plots are drawn by plot_work_precision.py with matplotlib; the
+# Python that runs it defaults to Debian's /usr/bin/python3 (python3-matplotlib) when present,
+# since the python3 first on PATH may lack matplotlib. Set TUMBLE_BENCH_PLOT_PYTHON to change it.
+
+if(NOT TARGET tumble::cvode)
+  message(STATUS "tumble benchmarks: SUNDIALS CVODE not found, tumble_bench is skipped")
+  return()
+endif()
+
+if(EXISTS /usr/bin/python3)
+  set(_tumble_plot_python_default /usr/bin/python3)
+else()
+  set(_tumble_plot_python_default python3)
+endif()
+set(TUMBLE_BENCH_PLOT_PYTHON "${_tumble_plot_python_default}" CACHE STRING
+    "Python (with matplotlib) that tumble_bench runs to draw its plots")
+
+add_executable(tumble_bench
+  work_precision_main.cpp
+  work_precision_problems.cpp
+  work_precision_tumble_a.cpp
+  work_precision_tumble_b.cpp
+  work_precision_scaling.cpp
+  work_precision_pinocchio.cpp)
+target_link_libraries(tumble_bench PRIVATE tumble::cvode tumble_project_options)
+# tests/support/torque_free.hpp: the analytic torque-free reference (TorqueFreeBody).
+target_include_directories(tumble_bench PRIVATE ${PROJECT_SOURCE_DIR}/tests
+                                               ${CMAKE_CURRENT_SOURCE_DIR})
+
+string(TOUPPER "${CMAKE_BUILD_TYPE}" _tumble_wp_bt)
+string(STRIP "${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${_tumble_wp_bt}}" _tumble_wp_flags)
+if(TUMBLE_BENCH_NATIVE)
+  target_compile_options(tumble_bench PRIVATE -march=native)
+  string(APPEND _tumble_wp_flags " -march=native")
+endif()
+if(NOT CMAKE_BUILD_TYPE)
+  set(_tumble_wp_build_type "none")
+else()
+  set(_tumble_wp_build_type "${CMAKE_BUILD_TYPE}")
+endif()
+target_compile_definitions(tumble_bench PRIVATE
+  "TUMBLE_BENCH_DEFAULT_OUT=\"${PROJECT_BINARY_DIR}/benchmark-results\""
+  "TUMBLE_BENCH_PLOT_SCRIPT=\"${CMAKE_CURRENT_SOURCE_DIR}/plot_work_precision.py\""
+  "TUMBLE_BENCH_PLOT_PYTHON=\"${TUMBLE_BENCH_PLOT_PYTHON}\""
+  "TUMBLE_BENCH_BUILD_TYPE=\"${_tumble_wp_build_type}\""
+  "TUMBLE_BENCH_CXX_FLAGS=\"${_tumble_wp_flags}\"")
+
+if(TUMBLE_BENCH_HAVE_PINOCCHIO AND TARGET tumble_bench_pinocchio)
+  # Only the Pinocchio translation unit sees its headers (they take a while to compile).
+  set_source_files_properties(work_precision_pinocchio.cpp PROPERTIES
+    COMPILE_DEFINITIONS TUMBLE_BENCH_HAVE_PINOCCHIO=1)
+  target_link_libraries(tumble_bench PRIVATE tumble_bench_pinocchio)
+  message(STATUS "tumble_bench: Pinocchio's aba in CVODE is one of the references")
+else()
+  message(STATUS "tumble_bench: without Pinocchio (its reference is skipped)")
+endif()
+
+# The micro-benchmarks run first in tumble_bench (their ratios head its summary): build them with it.
+if(TARGET tumble_micro)
+  add_dependencies(tumble_bench tumble_micro)
+  target_compile_definitions(tumble_bench PRIVATE
+    "TUMBLE_BENCH_MICRO=\"$<TARGET_FILE:tumble_micro>\""
+    "TUMBLE_BENCH_MICRO_SCRIPT=\"${CMAKE_CURRENT_SOURCE_DIR}/summarize_micro.py\"")
+endif()

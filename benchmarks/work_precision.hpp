@@ -1,0 +1,289 @@
+#pragma once
+// tumble_bench, the work-precision driver: what its translation units share.
+//
+// A *problem* is a rigid-body motion with a known answer at a set of output times (the exact
+// solution, or a reference integration where there is none). A *method* integrates it and
+// records, at every output time, the attitude R, the body angular velocity omega and the position
+// and velocity of the body's reference point (a Sample); the driver compares them with the
+// problem's reference samples. Every method is timed the same way: the best of several runs of
+// the integrator's construction plus the integration over all output times (what a user pays),
+// on the wall clock (std::chrono::steady_clock) and, beside it, on the thread's CPU-time clock;
+// building the problem's data is not timed.
+//
+// Methods (see work_precision_main.cpp for the sweep and the summary):
+//  - tumble: a Scene of one RigidBody<P> integrated by SceneIntegrator (CVODE Adams or BDF), for
+//    every orientation parameterization P (work_precision_tumble.hpp);
+//  - the hand-written CVODE floor: the same CVODE settings on a plain tumble::Cvode system whose
+//    right-hand side is the Euler-parameter closed form written out by hand
+//    (work_precision_problems.cpp);
+//  - fixed-step classical RK4 on the Euler-parameter equations (work_precision_problems.cpp);
+//  - Pinocchio's aba inside the same CVODE setup, when Pinocchio is installed
+//    (work_precision_pinocchio.cpp).
+// Conventions are tumble's (docs/conventions.md): R maps body components to inertial ones,
+// omega is in body components, quaternions are scalar first.
+
+#include <time.h>
+
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace tumble::bench {
+
+using Clock = std::chrono::steady_clock;
+
+/// Seconds elapsed since `start`.
+inline double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+/// Which clock the report uses (both are always recorded).
+enum class TimeBase {
+  wall,  ///< std::chrono::steady_clock: what a user waits (the default)
+  cpu,   ///< this thread's CPU time (CLOCK_THREAD_CPUTIME_ID): leaves out the time the thread
+         ///< waited for a core, so it estimates the uncontended run time on a busy machine
+};
+
+/// A stopwatch on both clocks, started at construction.
+class Stopwatch {
+ public:
+  Stopwatch() : wall_(Clock::now()), cpu_(cpu_now()) {}
+  [[nodiscard]] double wall() const { return seconds_since(wall_); }
+  [[nodiscard]] double cpu() const { return cpu_now() - cpu_; }
+  [[nodiscard]] double elapsed(TimeBase base) const {
+    return base == TimeBase::cpu ? cpu() : wall();
+  }
+  /// This thread's CPU time, s (POSIX clock_gettime).
+  static double cpu_now() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+  }
+
+ private:
+  Clock::time_point wall_;
+  double cpu_;
+};
+
+enum class ProblemKind {
+  tumbling,        ///< torque-free asymmetric body, framed at its centroid
+  spinner,         ///< the same body spinning fast about its minor axis
+  gravity_offset,  ///< a body framed off its centroid, thrown under uniform gravity
+  stiff_top,       ///< a spinning top held at its tip by a stiff spring-damper
+};
+
+/// Integration scheme of a method.
+enum class Scheme { adams, bdf, rk4 };
+
+inline const char* scheme_name(Scheme s) {
+  switch (s) {
+    case Scheme::adams:
+      return "adams";
+    case Scheme::bdf:
+      return "bdf";
+    case Scheme::rk4:
+      return "rk4";
+  }
+  return "?";
+}
+
+/// The state of the body at one output time, as every method reports it.
+struct Sample {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();  ///< R, body -> inertial
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();         ///< body components, rad/s
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();      ///< reference point, inertial, m
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();      ///< reference point, inertial, m/s
+};
+
+/// A problem: the body, its initial state, its loads, the output times and the reference.
+struct Problem {
+  ProblemKind kind = ProblemKind::tumbling;
+  std::string id;     ///< short name, used in file names ("tumbling")
+  std::string title;  ///< one line for the report
+  double t_end = 0;
+  std::vector<double> times;  ///< output times in (0, t_end], increasing; the last is t_end
+
+  // The body (SI units). Principal inertia about the centroid; the centroid sits at `centroid`
+  // (body components) from the reference point, zero for a body framed at its centroid.
+  double mass = 1;
+  Eigen::Vector3d inertia = Eigen::Vector3d::Ones();
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  bool at_centroid = true;
+  // The initial state (tumble's InitialState): reference point position and velocity, R, omega.
+  Eigen::Matrix3d r0 = Eigen::Matrix3d::Identity();
+  Eigen::Vector3d omega0 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d position0 = Eigen::Vector3d::Zero();
+  Eigen::Vector3d velocity0 = Eigen::Vector3d::Zero();
+  // Loads: uniform gravity; for the stiff top an isotropic spring-damper (zero rest length)
+  // between the reference point and the inertial origin.
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
+  double stiffness = 0;
+  double damping = 0;
+
+  // The reference.
+  std::vector<Sample> reference;  ///< at `times`
+  bool exact = true;              ///< closed form (true) or a reference integration (false)
+  std::string reference_note;     ///< how the reference was obtained
+  /// An estimate of the reference's own attitude error (rad; 0 for a closed form): errors below
+  /// a few times this are not resolved.
+  double reference_uncertainty = 0;
+};
+
+/// The outcome of one method on one problem at one setting.
+struct Run {
+  bool ok = true;
+  std::string error;  ///< why it failed, when !ok
+  double seconds = std::numeric_limits<double>::infinity();  ///< best of `reps`, Timing's clock
+  double seconds_median = std::numeric_limits<double>::quiet_NaN();  ///< the same clock
+  double wall_seconds = std::numeric_limits<double>::infinity();     ///< best, wall clock
+  double cpu_seconds = std::numeric_limits<double>::infinity();      ///< best, CPU time
+  int reps = 0;
+  std::vector<Sample> samples;  ///< at Problem::times
+  long steps = 0;
+  long rhs_evals = 0;         ///< right-hand sides (RK4: 4 per step)
+  long linear_rhs_evals = 0;  ///< right-hand sides for difference-quotient Jacobians
+  long jacobian_evals = 0;
+  long error_test_failures = 0;
+  long convergence_failures = 0;
+  long reinits = 0;  ///< CVODE restarts (chart switches restart CVODE)
+  long chart_switches = 0;
+  double constraint_drift = std::numeric_limits<double>::quiet_NaN();  ///< | |p| - 1 | at the end
+};
+
+/// Errors of a run against the problem's reference (all maxima over the output times).
+struct Errors {
+  double final_attitude = std::numeric_limits<double>::quiet_NaN();  ///< rad, at t_end
+  double max_attitude = std::numeric_limits<double>::quiet_NaN();    ///< rad
+  double max_centroid = std::numeric_limits<double>::quiet_NaN();    ///< m
+  double max_omega = std::numeric_limits<double>::quiet_NaN();       ///< rad/s
+  /// max |E(t) - E_ref(t)| / |E_ref(0)|; E_ref is the constant E(0) where energy is conserved.
+  double energy_drift = std::numeric_limits<double>::quiet_NaN();
+  /// max |h(t) - h_ref(t)| / |h_ref(0)|, h = R I_g omega the angular momentum about the centroid
+  /// (inertial components; conserved by the torque-free body and under uniform gravity).
+  double momentum_drift = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// The geodesic distance between two attitudes, the angle of R_a^T R_b in [0, pi] (rad), as
+/// atan2(|axial part|, (trace - 1)/2): accurate for small angles, where acos((trace - 1)/2) is not.
+double geodesic_angle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b);
+
+/// Total energy T + V of the body in a sample, J.
+double energy(const Problem& p, const Sample& s);
+/// Angular momentum about the centroid, inertial components, kg m^2/s.
+Eigen::Vector3d centroid_momentum(const Problem& p, const Sample& s);
+
+Errors evaluate(const Problem& p, const Run& r);
+
+/// How a run is timed: best of `reps` runs (fewer when one run is slow, see max_seconds).
+struct Timing {
+  int reps = 3;
+  TimeBase base = TimeBase::wall;
+  /// After the first run, skip further repetitions when it took longer than this (s): the run
+  /// time is then far above the timer's resolution and the noise it would average out.
+  double slow_run = 1.0;
+};
+
+/// Records one timed repetition, measured by `watch`, into `run` (the best on each clock, and
+/// the times on Timing's clock for the median).
+void record_time(Run& run, std::vector<double>& times, const Stopwatch& watch,
+                 const Timing& timing);
+/// Finishes the timing record (median, reps).
+void finish_timing(Run& run, std::vector<double>& times);
+/// Whether another repetition should be run after `done` of them.
+bool another_rep(const Timing& timing, const std::vector<double>& times);
+
+// ---- the problems ---------------------------------------------------------------------------
+
+/// The four problems with their output times and, for the three with a closed form, their
+/// exact reference samples. The stiff top's reference is filled in by the driver (it needs an
+/// integration, see make_stiff_reference in work_precision_main.cpp).
+std::vector<Problem> make_problems(int output_count);
+
+/// The stiff top's reference (it has no closed form): tumble's equations of the same body and
+/// loads in long double (RigidBody<EulerParameters, offset, long double> and its accelerations),
+/// integrated by classical RK4 with `substeps` fixed steps per output interval and the quaternion
+/// projected onto |p| = 1, p.pdot = 0 after every step. `uncertainty` receives the Richardson
+/// estimate of its attitude error, max |angle(R_h, R_2h)| / 15 (RK4's error is O(h^4)).
+std::vector<Sample> stiff_top_reference(const Problem& p, int substeps, double& uncertainty);
+
+/// Exact samples of a torque-free / freely falling body (TorqueFreeBody for the attitude, a
+/// parabola for the centroid) at the problem's output times.
+std::vector<Sample> exact_samples(const Problem& p);
+
+// ---- the methods ----------------------------------------------------------------------------
+
+/// CVODE settings shared by every CVODE-based method: rtol = atol = tol.
+struct CvodeSetting {
+  Scheme scheme = Scheme::adams;
+  double tol = 1e-6;
+};
+
+/// tumble with parameterization P (a function per parameterization, see work_precision_tumble.hpp).
+using TumbleRunner = Run (*)(const Problem&, const CvodeSetting&, const Timing&);
+
+struct Parameterization {
+  std::string name;
+  bool quick = false;  ///< in the default (quick) sweep; all are in --full
+  TumbleRunner run = nullptr;
+};
+
+/// The parameterizations, in the order of the report (instantiated in work_precision_tumble_*.cpp).
+void add_parameterizations_a(std::vector<Parameterization>& list);
+void add_parameterizations_b(std::vector<Parameterization>& list);
+
+/// The hand-written Euler-parameter right-hand side in a plain tumble::Cvode (the CVODE floor).
+/// Only for the problems with a closed form (it has no spring).
+Run run_handwritten(const Problem& p, const CvodeSetting& c, const Timing& timing);
+
+/// Fixed-step classical RK4 on the Euler-parameter equations (first-order form: p and omega),
+/// `substeps` steps per output interval, with the quaternion normalized after every step.
+Run run_rk4(const Problem& p, int substeps, const Timing& timing);
+
+/// Pinocchio's aba in the same CVODE setup (work_precision_pinocchio.cpp).
+bool pinocchio_available();
+std::string pinocchio_description();
+Run run_pinocchio(const Problem& p, const CvodeSetting& c, const Timing& timing);
+
+// ---- the scaling study (work_precision_scaling.cpp) ------------------------------------------
+
+struct ScalingRow {
+  int bodies = 0;
+  std::string what;  ///< "rhs", "bdf-dense", "bdf-band", "bdf-gmres"
+  double seconds = 0;  ///< per right-hand side, or per BDF step
+  double per_body = 0;  ///< seconds / bodies
+  long calls = 0;       ///< right-hand sides timed, or BDF steps taken
+  long rhs_evals = 0;   ///< BDF: right-hand sides, including those of the Jacobian
+  long jacobian_evals = 0;
+  long linear_iterations = 0;
+  bool ok = true;
+  std::string error;
+};
+
+struct ScalingPlan {
+  std::vector<int> rhs_sizes;    ///< N for the right-hand-side cost
+  std::vector<int> bdf_sizes;    ///< N for the BDF step cost (band and GMRES)
+  int dense_limit = 100;         ///< the dense solver only up to this N
+  int bdf_steps = 60;            ///< BDF steps timed per N
+  double rhs_seconds = 0.02;     ///< time per timed batch of right-hand sides
+  int rhs_batches = 5;           ///< timed batches per N, the best is kept
+  int reps = 3;                  ///< BDF runs per N, the best is kept
+  TimeBase base = TimeBase::wall;
+};
+
+/// Progress callbacks: `start` before each measurement with a one-line description, `done`
+/// after it with the result.
+struct ScalingProgress {
+  std::function<void(const std::string&)> start;
+  std::function<void(const ScalingRow&)> done;
+};
+
+std::vector<ScalingRow> run_scaling(const ScalingPlan& plan, const ScalingProgress& progress);
+/// Counts the measurements run_scaling will make (for the progress counter).
+int scaling_measurements(const ScalingPlan& plan);
+
+}  // namespace tumble::bench

@@ -1,0 +1,514 @@
+// tumble_bench: the problems, their exact references, the error measures, and the two reference
+// methods that need only CVODE: the hand-written Euler-parameter right-hand side (the CVODE
+// floor) and fixed-step classical RK4.
+//
+// Euler parameters p = (e0, e1, e2, e3), scalar first, with L(p) = [-e | e0 I - S(e)]:
+//   omega = 2 L(p) pdot,  pdot = 1/2 L(p)^T omega                       (reference chapter Eq. 1.5)
+//   omegadot = I^-1 (M - omega x I omega)                    (Euler's equations, about the centroid)
+//   pddot = 1/2 L(p)^T omegadot - |pdot|^2 p       (Eq. 1.10 with Gdot pdot = 0; p.pddot = -|pdot|^2)
+// Sources of the exact solutions: tests/support/torque_free.hpp (Jacobi elliptic functions for
+// omega, the angular-momentum angles for R; long double) and, under uniform gravity, the
+// parabola of the centroid r_g(t) = r_g(0) + v_g(0) t + g t^2 / 2 (gravity exerts no moment about
+// the centroid, so the attitude is that of the torque-free body).
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "support/torque_free.hpp"
+#include "tumble/cvode.hpp"
+#include "work_precision.hpp"
+
+namespace tumble::bench {
+
+// ---- errors ------------------------------------------------------------------------------------
+
+double geodesic_angle(const Eigen::Matrix3d& a, const Eigen::Matrix3d& b) {
+  const Eigen::Matrix3d e = a.transpose() * b;
+  const Eigen::Vector3d axial(e(2, 1) - e(1, 2), e(0, 2) - e(2, 0), e(1, 0) - e(0, 1));
+  return std::atan2(0.5 * axial.norm(), 0.5 * (e.trace() - 1.0));
+}
+
+namespace {
+Eigen::Vector3d centroid_of(const Problem& p, const Sample& s) {
+  return s.position + s.rotation * p.centroid;
+}
+Eigen::Vector3d centroid_velocity_of(const Problem& p, const Sample& s) {
+  return s.velocity + s.rotation * s.omega.cross(p.centroid);
+}
+}  // namespace
+
+double energy(const Problem& p, const Sample& s) {
+  const Eigen::Vector3d vg = centroid_velocity_of(p, s);
+  const double kinetic =
+      0.5 * p.mass * vg.squaredNorm() + 0.5 * s.omega.dot(p.inertia.cwiseProduct(s.omega));
+  double potential = -p.mass * p.gravity.dot(centroid_of(p, s));
+  if (p.stiffness > 0) {
+    potential += 0.5 * p.stiffness * s.position.squaredNorm();  // spring to the origin, L0 = 0
+  }
+  return kinetic + potential;
+}
+
+Eigen::Vector3d centroid_momentum(const Problem& p, const Sample& s) {
+  return s.rotation * p.inertia.cwiseProduct(s.omega);
+}
+
+Errors evaluate(const Problem& p, const Run& r) {
+  Errors e;
+  if (!r.ok || r.samples.size() != p.reference.size() || r.samples.empty()) {
+    return e;
+  }
+  const double e_scale = std::max(std::abs(energy(p, p.reference.front())), 1e-300);
+  const double h_scale = std::max(centroid_momentum(p, p.reference.front()).norm(), 1e-300);
+  e.max_attitude = e.max_centroid = e.max_omega = e.energy_drift = e.momentum_drift = 0;
+  for (std::size_t k = 0; k < r.samples.size(); ++k) {
+    const Sample& s = r.samples[k];
+    const Sample& x = p.reference[k];
+    const double angle = geodesic_angle(x.rotation, s.rotation);
+    if (!std::isfinite(angle)) {
+      e.max_attitude = std::numeric_limits<double>::infinity();
+      break;
+    }
+    e.max_attitude = std::max(e.max_attitude, angle);
+    e.max_centroid = std::max(e.max_centroid, (centroid_of(p, s) - centroid_of(p, x)).norm());
+    e.max_omega = std::max(e.max_omega, (s.omega - x.omega).norm());
+    e.energy_drift = std::max(e.energy_drift, std::abs(energy(p, s) - energy(p, x)) / e_scale);
+    e.momentum_drift =
+        std::max(e.momentum_drift,
+                 (centroid_momentum(p, s) - centroid_momentum(p, x)).norm() / h_scale);
+  }
+  e.final_attitude = geodesic_angle(p.reference.back().rotation, r.samples.back().rotation);
+  return e;
+}
+
+// ---- timing --------------------------------------------------------------------------------------
+
+void record_time(Run& run, std::vector<double>& times, const Stopwatch& watch,
+                 const Timing& timing) {
+  const double wall = watch.wall();
+  const double cpu = watch.cpu();
+  const double seconds = timing.base == TimeBase::cpu ? cpu : wall;
+  times.push_back(seconds);
+  run.seconds = std::min(run.seconds, seconds);
+  run.wall_seconds = std::min(run.wall_seconds, wall);
+  run.cpu_seconds = std::min(run.cpu_seconds, cpu);
+}
+
+bool another_rep(const Timing& timing, const std::vector<double>& times) {
+  if (static_cast<int>(times.size()) >= timing.reps) {
+    return false;
+  }
+  return !(times.size() == 1 && times.front() > timing.slow_run);
+}
+
+void finish_timing(Run& run, std::vector<double>& times) {
+  run.reps = static_cast<int>(times.size());
+  if (times.empty()) {
+    return;
+  }
+  std::sort(times.begin(), times.end());
+  const std::size_t n = times.size();
+  run.seconds_median = n % 2 == 1 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+}
+
+// ---- the problems --------------------------------------------------------------------------------
+
+std::vector<Sample> exact_samples(const Problem& p) {
+  using test::TorqueFreeBody;
+  using Vec3L = TorqueFreeBody::Vec3L;
+  using Mat3L = TorqueFreeBody::Mat3L;
+  const Vec3L inertia = p.inertia.cast<long double>();
+  const Vec3L omega0 = p.omega0.cast<long double>();
+  const Mat3L r0 = p.r0.cast<long double>();
+  const TorqueFreeBody body(inertia, omega0, r0);
+  // The centroid's parabola, in long double.
+  const Vec3L c = p.centroid.cast<long double>();
+  const Vec3L rg0 = p.position0.cast<long double>() + p.r0.cast<long double>() * c;
+  const Vec3L vg0 = p.velocity0.cast<long double>() +
+                    p.r0.cast<long double>() * p.omega0.cast<long double>().cross(c);
+  const Vec3L g = p.gravity.cast<long double>();
+  std::vector<Sample> out(p.times.size());
+  for (std::size_t k = 0; k < p.times.size(); ++k) {
+    const long double t = p.times[k];
+    const TorqueFreeBody::Mat3L r = body.rotation_ld(t);
+    const Vec3L w = body.omega_ld(t);
+    const Vec3L rg = rg0 + vg0 * t + 0.5L * g * t * t;
+    const Vec3L vg = vg0 + g * t;
+    out[k].rotation = r.cast<double>();
+    out[k].omega = w.cast<double>();
+    out[k].position = (rg - r * c).cast<double>();
+    out[k].velocity = (vg - r * w.cross(c)).cast<double>();
+  }
+  return out;
+}
+
+namespace {
+
+/// One long double RK4 integration of the stiff top (see stiff_top_reference).
+std::vector<Sample> stiff_top_rk4(const Problem& p, int substeps) {
+  using L = long double;
+  using P = EulerParameters;
+  using Body = RigidBody<P, ReferencePoint::offset, L>;
+  using Coords = Body::Coords;
+  const Body body(MassProperties<L>::about_centroid(
+      L(p.mass), Matrix3<L>(p.inertia.cast<L>().asDiagonal()), p.centroid.cast<L>()));
+  const UniformGravity gravity(p.gravity);
+  const SpringDamper spring(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                            {.stiffness = p.stiffness, .damping = p.damping, .rest_length = 0.0});
+  const Vector4<L> p0 = P::from_rotation(Matrix3<L>(p.r0.cast<L>()));
+  Coords q, qd;
+  q << p.position0.cast<L>(), p0;
+  qd << p.velocity0.cast<L>(), P::thetadot(p0, Vector3<L>(p.omega0.cast<L>()));
+  auto f = [&](const L& t, const Coords& x, const Coords& xd) {
+    return accelerations(body, t, x, xd, gravity, spring);
+  };
+  std::vector<Sample> out(p.times.size());
+  L t = 0;
+  for (std::size_t k = 0; k < p.times.size(); ++k) {
+    const L h = (L(p.times[k]) - t) / L(substeps);
+    for (int i = 0; i < substeps; ++i) {
+      const Coords a1 = f(t, q, qd);
+      const Coords v1 = qd;
+      const Coords a2 = f(t + h / 2, q + h / 2 * v1, qd + h / 2 * a1);
+      const Coords v2 = qd + h / 2 * a1;
+      const Coords a3 = f(t + h / 2, q + h / 2 * v2, qd + h / 2 * a2);
+      const Coords v3 = qd + h / 2 * a2;
+      const Coords a4 = f(t + h, q + h * v3, qd + h * a3);
+      const Coords v4 = qd + h * a3;
+      q += h / 6 * (v1 + L(2) * v2 + L(2) * v3 + v4);
+      qd += h / 6 * (a1 + L(2) * a2 + L(2) * a3 + a4);
+      t += h;
+      // Projection onto |p| = 1, p.pdot = 0 (as CVODE's projection in the scene).
+      const Vector4<L> pn = q.template tail<4>().normalized();
+      q.template tail<4>() = pn;
+      qd.template tail<4>() -= pn.dot(qd.template tail<4>()) * pn;
+    }
+    t = L(p.times[k]);
+    const Vector4<L> pk = q.template tail<4>();
+    const Matrix3<L> r = P::rotation(pk);
+    const Vector3<L> w = P::G(pk) * qd.template tail<4>();
+    out[k].rotation = r.cast<double>();
+    out[k].omega = w.cast<double>();
+    out[k].position = q.template head<3>().cast<double>();
+    out[k].velocity = qd.template head<3>().cast<double>();
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Sample> stiff_top_reference(const Problem& p, int substeps, double& uncertainty) {
+  std::vector<Sample> fine = stiff_top_rk4(p, substeps);
+  const std::vector<Sample> coarse = stiff_top_rk4(p, std::max(1, substeps / 2));
+  uncertainty = 0;
+  for (std::size_t k = 0; k < fine.size(); ++k) {
+    uncertainty = std::max(uncertainty, geodesic_angle(fine[k].rotation, coarse[k].rotation));
+  }
+  uncertainty /= 15.0;  // err(h) = (x_2h - x_h) / (2^4 - 1)
+  return fine;
+}
+
+std::vector<Problem> make_problems(int output_count) {
+  auto times = [output_count](double t_end) {
+    std::vector<double> t(static_cast<std::size_t>(output_count));
+    for (int k = 0; k < output_count; ++k) {
+      t[static_cast<std::size_t>(k)] = t_end * (k + 1) / output_count;
+    }
+    t.back() = t_end;
+    return t;
+  };
+  std::vector<Problem> list;
+
+  Problem tumbling;
+  tumbling.kind = ProblemKind::tumbling;
+  tumbling.id = "tumbling";
+  tumbling.title =
+      "torque-free asymmetric body, I = diag(1, 2, 3), omega0 = (0.1, 2, 0.05) rad/s, T = 50 s";
+  tumbling.t_end = 50.0;
+  tumbling.inertia = {1.0, 2.0, 3.0};
+  tumbling.omega0 = {0.1, 2.0, 0.05};
+  list.push_back(tumbling);
+
+  Problem spinner = tumbling;
+  spinner.kind = ProblemKind::spinner;
+  spinner.id = "spinner";
+  spinner.title =
+      "fast spinner about the minor axis, I = diag(1, 2, 3), omega0 = (200, 0.5, 0.3) rad/s, "
+      "T = 2 s";
+  spinner.t_end = 2.0;
+  spinner.omega0 = {200.0, 0.5, 0.3};
+  list.push_back(spinner);
+
+  Problem thrown;
+  thrown.kind = ProblemKind::gravity_offset;
+  thrown.id = "gravity_offset";
+  thrown.title =
+      "body framed off its centroid (r_g = (0.3, -0.2, 0.5) m), thrown under gravity, "
+      "omega0 = (0.5, 2, -1) rad/s, T = 5 s";
+  thrown.t_end = 5.0;
+  thrown.mass = 2.0;
+  thrown.inertia = {1.0, 2.0, 3.0};
+  thrown.centroid = {0.3, -0.2, 0.5};
+  thrown.at_centroid = false;
+  thrown.r0 = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  thrown.omega0 = {0.5, 2.0, -1.0};
+  thrown.position0 = {0.0, 0.0, 10.0};
+  thrown.velocity0 = {3.0, 1.0, 15.0};
+  thrown.gravity = {0.0, 0.0, -9.81};
+  list.push_back(thrown);
+
+  // The heavy top of examples/heavy_top.cpp with k/m = 1e6 s^-2 and a damping ratio of 0.05.
+  Problem top;
+  top.kind = ProblemKind::stiff_top;
+  top.id = "stiff_top";
+  top.title =
+      "spinning top (150 rad/s) held at its tip by a stiff spring-damper, k/m = 1e6 s^-2, "
+      "T = 1 s";
+  top.t_end = 1.0;
+  top.mass = 0.5;
+  top.inertia = {1.5e-3, 1.5e-3, 1.0e-3};
+  top.centroid = {0.0, 0.0, 0.05};
+  top.at_centroid = false;
+  top.r0 = Eigen::AngleAxisd(0.35, Eigen::Vector3d::UnitX()).toRotationMatrix();
+  top.omega0 = {0.0, 0.0, 150.0};
+  top.gravity = {0.0, 0.0, -9.81};
+  top.stiffness = 5.0e5;
+  top.damping = 50.0;  // c / (2 sqrt(k m)) = 0.05
+  top.exact = false;
+  list.push_back(top);
+
+  for (Problem& p : list) {
+    p.times = times(p.t_end);
+    if (p.exact) {
+      try {
+        p.reference = exact_samples(p);
+        p.reference_note = p.kind == ProblemKind::gravity_offset
+                               ? "exact: TorqueFreeBody (elliptic functions, long double) for "
+                                 "the attitude, the parabola for the centroid"
+                               : "exact: TorqueFreeBody (elliptic functions, long double)";
+      } catch (const std::exception& e) {
+        // E.g. under valgrind, whose long double is a double: the runs are still timed (for
+        // profiles), their errors are not measured.
+        p.reference.clear();
+        p.reference_note = std::string("UNAVAILABLE (") + e.what() + "): errors not measured";
+      }
+    }
+  }
+  return list;
+}
+
+// ---- the hand-written CVODE floor ------------------------------------------------------------
+
+namespace {
+
+/// R(p) for Euler parameters (body -> inertial), written out.
+Eigen::Matrix3d rotation_of(const Eigen::Vector4d& p) {
+  const double e0 = p(0), e1 = p(1), e2 = p(2), e3 = p(3);
+  Eigen::Matrix3d r;
+  r << e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3, 2 * (e1 * e2 - e0 * e3), 2 * (e1 * e3 + e0 * e2),  //
+      2 * (e1 * e2 + e0 * e3), e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3, 2 * (e2 * e3 - e0 * e1),    //
+      2 * (e1 * e3 - e0 * e2), 2 * (e2 * e3 + e0 * e1), e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3;
+  return r;
+}
+
+/// omega = 2 L(p) pdot.
+Eigen::Vector3d omega_of(const Eigen::Vector4d& p, const Eigen::Vector4d& pd) {
+  return {2 * (-p(1) * pd(0) + p(0) * pd(1) + p(3) * pd(2) - p(2) * pd(3)),
+          2 * (-p(2) * pd(0) - p(3) * pd(1) + p(0) * pd(2) + p(1) * pd(3)),
+          2 * (-p(3) * pd(0) + p(2) * pd(1) - p(1) * pd(2) + p(0) * pd(3))};
+}
+
+/// 1/2 L(p)^T w.
+Eigen::Vector4d half_lt(const Eigen::Vector4d& p, const Eigen::Vector3d& w) {
+  return {0.5 * (-p(1) * w(0) - p(2) * w(1) - p(3) * w(2)),
+          0.5 * (p(0) * w(0) - p(3) * w(1) + p(2) * w(2)),
+          0.5 * (p(3) * w(0) + p(0) * w(1) - p(1) * w(2)),
+          0.5 * (-p(2) * w(0) + p(1) * w(1) + p(0) * w(2))};
+}
+
+/// The hand-written system: y = [r_g (3); p (4); v_g (3); pdot (4)], the same 14 coordinates
+/// and the same equations as tumble's centroidal Euler-parameter body, with the same
+/// constraint handling: projection after each BDF step, the scene's Baumgarte-stabilized
+/// constraint acceleration with Adams (scene/scene.hpp), so that the comparison is like for like.
+struct HandWrittenSystem {
+  Eigen::Vector3d inertia;
+  Eigen::Vector3d inverse;
+  Eigen::Vector3d gravity;
+  bool stabilize = false;
+
+  [[nodiscard]] int size() const { return 14; }
+
+  void rhs(double /*t*/, ConstVectorMap y, VectorMap yd) const {
+    const Eigen::Vector4d p = y.segment<4>(3);
+    const Eigen::Vector4d pd = y.segment<4>(10);
+    const Eigen::Vector3d w = omega_of(p, pd);
+    const Eigen::Vector3d wd = -inverse.cwiseProduct(w.cross(inertia.cwiseProduct(w)));
+    const double pd2 = pd.squaredNorm();
+    Eigen::Vector4d pdd = half_lt(p, wd) - pd2 * p;
+    if (stabilize) {
+      // p.pddot = -|pdot|^2 - 2 g (p.pdot) - g^2 (|p|^2 - 1) / 2 with g = |omega|, as the scene.
+      const double pp = p.squaredNorm();
+      const double g2 = w.squaredNorm();
+      const double g = std::sqrt(g2);
+      const double nu = -(pd2 + 2.0 * g * p.dot(pd) + 0.5 * g2 * (pp - 1.0)) / pp;
+      pdd += (nu + pd2) * p;
+    }
+    yd.segment<3>(0) = y.segment<3>(7);
+    yd.segment<4>(3) = pd;
+    yd.segment<3>(7) = gravity;
+    yd.segment<4>(10) = pdd;
+  }
+
+  /// p -> p / |p|, pdot -> pdot - (p.pdot) p, and the error estimate's normal part removed.
+  void project(double /*t*/, ConstVectorMap y, VectorMap corr, double /*eps*/,
+               VectorMap err) const {
+    corr.setZero();
+    const Eigen::Vector4d p = y.segment<4>(3);
+    const Eigen::Vector4d pd = y.segment<4>(10);
+    const Eigen::Vector4d pn = p / p.norm();
+    corr.segment<4>(3) = pn - p;
+    corr.segment<4>(10) = -pn.dot(pd) * pn;
+    if (err.size() > 0) {
+      const Eigen::Vector4d ep = err.segment<4>(3);
+      const Eigen::Vector4d ev = err.segment<4>(10);
+      err.segment<4>(3) = ep - pn.dot(ep) * pn;
+      err.segment<4>(10) = ev - pn.dot(ev) * pn;
+    }
+  }
+};
+
+Eigen::Vector4d quaternion_of(const Eigen::Matrix3d& r) {
+  const Eigen::Quaterniond q(r);
+  Eigen::Vector4d p(q.w(), q.x(), q.y(), q.z());
+  return p.normalized();
+}
+
+}  // namespace
+
+Run run_handwritten(const Problem& p, const CvodeSetting& c, const Timing& timing) {
+  Run run;
+  run.samples.resize(p.times.size());
+  // Initial state: the centroid's position and velocity, p and pdot.
+  const Eigen::Vector4d p0 = quaternion_of(p.r0);
+  Eigen::VectorXd y0(14);
+  y0.segment<3>(0) = p.position0 + p.r0 * p.centroid;
+  y0.segment<4>(3) = p0;
+  y0.segment<3>(7) = p.velocity0 + p.r0 * p.omega0.cross(p.centroid);
+  y0.segment<4>(10) = half_lt(p0, p.omega0);
+  CvodeOptions o;
+  o.method = c.scheme == Scheme::bdf ? CvodeMethod::bdf : CvodeMethod::adams;
+  o.rtol = c.tol;
+  o.atol = c.tol;
+  o.max_steps = 100'000'000;
+  o.projection = c.scheme == Scheme::bdf;
+  const HandWrittenSystem system{p.inertia, p.inertia.cwiseInverse(), p.gravity,
+                                 c.scheme != Scheme::bdf};
+  std::vector<double> times;
+  try {
+    do {
+      const Stopwatch watch;
+      Cvode<HandWrittenSystem> cvode(system, 0.0, y0, o);
+      std::size_t k = 0;
+      cvode.integrate(p.times, [&](double, ConstVectorMap y) {
+        Sample& s = run.samples[k++];
+        const Eigen::Vector4d q = y.segment<4>(3);
+        s.rotation = rotation_of(q);
+        s.omega = omega_of(q, y.segment<4>(10));
+        s.position = y.segment<3>(0) - s.rotation * p.centroid;
+        s.velocity = y.segment<3>(7) - s.rotation * s.omega.cross(p.centroid);
+      });
+      record_time(run, times, watch, timing);
+      const CvodeStatistics st = cvode.statistics();
+      run.steps = st.steps;
+      run.rhs_evals = st.rhs_evals;
+      run.linear_rhs_evals = st.linear_rhs_evals;
+      run.jacobian_evals = st.jacobian_evals;
+      run.error_test_failures = st.error_test_failures;
+      run.convergence_failures = st.nonlinear_convergence_failures;
+      run.reinits = st.reinits;
+      const Eigen::Vector4d q = cvode.state().segment<4>(3);
+      run.constraint_drift = std::abs(q.norm() - 1.0);
+    } while (another_rep(timing, times));
+  } catch (const std::exception& e) {
+    run.ok = false;
+    run.error = e.what();
+  }
+  finish_timing(run, times);
+  return run;
+}
+
+// ---- fixed-step RK4 ----------------------------------------------------------------------------
+
+namespace {
+
+/// The first-order Euler-parameter equations that fixed-step simulators integrate:
+/// x = [r_g (3); v_g (3); p (4); omega (3)], rdot = v, vdot = g, pdot = 1/2 L(p)^T omega,
+/// omegadot = I^-1 (-omega x I omega).
+using Rk4State = Eigen::Matrix<double, 13, 1>;
+
+struct Rk4System {
+  Eigen::Vector3d inertia;
+  Eigen::Vector3d inverse;
+  Eigen::Vector3d gravity;
+
+  [[nodiscard]] Rk4State operator()(const Rk4State& x) const {
+    Rk4State d;
+    const Eigen::Vector4d p = x.segment<4>(6);
+    const Eigen::Vector3d w = x.segment<3>(10);
+    d.segment<3>(0) = x.segment<3>(3);
+    d.segment<3>(3) = gravity;
+    d.segment<4>(6) = half_lt(p, w);
+    d.segment<3>(10) = -inverse.cwiseProduct(w.cross(inertia.cwiseProduct(w)));
+    return d;
+  }
+};
+
+}  // namespace
+
+Run run_rk4(const Problem& p, int substeps, const Timing& timing) {
+  Run run;
+  run.samples.resize(p.times.size());
+  Rk4State x0;
+  x0.segment<3>(0) = p.position0 + p.r0 * p.centroid;
+  x0.segment<3>(3) = p.velocity0 + p.r0 * p.omega0.cross(p.centroid);
+  x0.segment<4>(6) = quaternion_of(p.r0);
+  x0.segment<3>(10) = p.omega0;
+  const Rk4System f{p.inertia, p.inertia.cwiseInverse(), p.gravity};
+  std::vector<double> times;
+  do {
+    const Stopwatch watch;
+    Rk4State x = x0;
+    double t = 0;
+    long steps = 0;
+    for (std::size_t k = 0; k < p.times.size(); ++k) {
+      const double h = (p.times[k] - t) / substeps;
+      for (int i = 0; i < substeps; ++i) {
+        const Rk4State k1 = f(x);
+        const Rk4State k2 = f(x + 0.5 * h * k1);
+        const Rk4State k3 = f(x + 0.5 * h * k2);
+        const Rk4State k4 = f(x + h * k3);
+        x += (h / 6.0) * (k1 + 2.0 * k2 + 2.0 * k3 + k4);
+        x.segment<4>(6).normalize();
+      }
+      steps += substeps;
+      t = p.times[k];
+      Sample& s = run.samples[k];
+      s.rotation = rotation_of(x.segment<4>(6));
+      s.omega = x.segment<3>(10);
+      s.position = x.segment<3>(0) - s.rotation * p.centroid;
+      s.velocity = x.segment<3>(3) - s.rotation * s.omega.cross(p.centroid);
+    }
+    record_time(run, times, watch, timing);
+    run.steps = steps;
+    run.rhs_evals = 4 * steps;
+    run.constraint_drift = std::abs(x.segment<4>(6).norm() - 1.0);
+  } while (another_rep(timing, times));
+  finish_timing(run, times);
+  return run;
+}
+
+}  // namespace tumble::bench
