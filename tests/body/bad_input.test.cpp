@@ -54,8 +54,8 @@ const Matrix3d kInertia = Vector3d(1.0, 2.0, 2.5).asDiagonal();
 TEST_CASE("bad input: a mass that is not positive and finite", "[body][bad_input]") {
   for (const double m : {0.0, -1.0, -0.0, kNaN, kInf, -kInf}) {
     INFO("mass " << m);
-    const std::string msg =
-        message_of<std::invalid_argument>([&] { (void)MassProperties<>::about_centroid(m, kInertia); });
+    const std::string msg = message_of<std::invalid_argument>(
+        [&] { (void)MassProperties<>::about_centroid(m, kInertia); });
     CHECK(has(msg, "tumble::MassProperties"));
     CHECK(has(msg, "mass must be positive and finite"));
   }
@@ -96,8 +96,9 @@ TEST_CASE("bad input: principal moments violating the triangle inequality", "[bo
 TEST_CASE("bad input: a non-finite inertia or centroid", "[body][bad_input]") {
   Matrix3d i = kInertia;
   i(2, 2) = kNaN;
-  CHECK(has(message_of<std::invalid_argument>([&] { (void)MassProperties<>::about_centroid(1.0, i); }),
-            "the inertia about the centroid has a non-finite entry"));
+  CHECK(has(
+      message_of<std::invalid_argument>([&] { (void)MassProperties<>::about_centroid(1.0, i); }),
+      "the inertia about the centroid has a non-finite entry"));
   i(2, 2) = kInf;
   CHECK(has(message_of<std::invalid_argument>(
                 [&] { (void)MassProperties<>::about_reference(1.0, i, Vector3d::Zero()); }),
@@ -122,17 +123,16 @@ TEST_CASE("bad input: an inertia about the reference point smaller than the para
           "[body][bad_input]") {
   // I_c = I_g + m (|r|^2 I - r r^T): an I_c below the parallel-axis term of its centroid gives an
   // I_g that is not positive definite.
-  const std::string msg = message_of<std::invalid_argument>([&] {
-    (void)MassProperties<>::about_reference(10.0, kInertia, Vector3d(1.0, 0, 0));
-  });
+  const std::string msg = message_of<std::invalid_argument>(
+      [&] { (void)MassProperties<>::about_reference(10.0, kInertia, Vector3d(1.0, 0, 0)); });
   CHECK(has(msg, "about the centroid is not positive definite"));
 }
 
 TEST_CASE("bad input: a centroidal body whose centroid is off its reference point",
           "[body][bad_input]") {
   const auto mp = MassProperties<>::about_centroid(1.0, kInertia, Vector3d(0.1, 0, 0));
-  const std::string msg = message_of<std::invalid_argument>(
-      [&] { (void)RigidBody<tumble::EulerParameters>(mp); });
+  const std::string msg =
+      message_of<std::invalid_argument>([&] { (void)RigidBody<tumble::EulerParameters>(mp); });
   CHECK(has(msg, "ReferencePoint::centroid"));
   CHECK(has(msg, "ReferencePoint::offset"));
   // The offset body accepts it.
@@ -143,7 +143,8 @@ TEST_CASE("bad input: a centroidal body whose centroid is off its reference poin
 
 TEST_CASE("bad input: a quaternion of zero or non-finite norm", "[body][bad_input]") {
   using tumble::EulerParameters;
-  for (const Vector4d& p : {Vector4d(0, 0, 0, 0), Vector4d(kNaN, 0, 0, 0), Vector4d(kInf, 1, 0, 0)}) {
+  for (const Vector4d& p :
+       {Vector4d(0, 0, 0, 0), Vector4d(kNaN, 0, 0, 0), Vector4d(kInf, 1, 0, 0)}) {
     INFO("p = " << p.transpose());
     const std::string msg =
         message_of<std::domain_error>([&] { (void)EulerParameters::canonical<double>(p); });
@@ -200,11 +201,10 @@ TEST_CASE("bad input: accelerations of a non-finite state or load", "[body][bad_
 
 // ---- force elements ---------------------------------------------------------------------------
 
-TEST_CASE("bad input: force elements with non-finite or negative parameters",
-          "[body][bad_input]") {
-  CHECK(has(message_of<std::invalid_argument>(
-                [] { (void)tumble::UniformGravity(Vector3d(0, 0, kNaN)); }),
-            "UniformGravity: g has a non-finite entry"));
+TEST_CASE("bad input: force elements with non-finite or negative parameters", "[body][bad_input]") {
+  CHECK(has(
+      message_of<std::invalid_argument>([] { (void)tumble::UniformGravity(Vector3d(0, 0, kNaN)); }),
+      "UniformGravity: g has a non-finite entry"));
   CHECK(has(message_of<std::invalid_argument>(
                 [] { (void)tumble::PointForce(Vector3d(kInf, 0, 0), Vector3d(0, 0, 1)); }),
             "PointForce: the point or the force is not finite"));
@@ -219,7 +219,8 @@ TEST_CASE("bad input: force elements with non-finite or negative parameters",
             }),
             "tumble::SpringDamperBetween"));
   CHECK(has(message_of<std::invalid_argument>([] {
-              (void)tumble::SpringDamper(Vector3d(0, kNaN, 0), Vector3d::Zero(), {.stiffness = 1.0});
+              (void)tumble::SpringDamper(Vector3d(0, kNaN, 0), Vector3d::Zero(),
+                                         {.stiffness = 1.0});
             }),
             "the point or the anchor is not finite"));
 }

@@ -16,8 +16,8 @@
 #include "tumble/body/rigid_body.hpp"
 #include "tumble/force/coupling.hpp"
 #include "tumble/force/user_force.hpp"
-#include "tumble/orientation/euler_angles.hpp"
 #include "tumble/integrate/scene_integrator.hpp"
+#include "tumble/orientation/euler_angles.hpp"
 #include "tumble/scene/scene.hpp"
 
 namespace {
@@ -86,10 +86,18 @@ TEST_CASE("bad input: a body's initial state with a non-finite entry", "[integra
   for (int field = 0; field < 4; ++field) {
     tumble::InitialState s;
     switch (field) {
-      case 0: s.position(1) = kNaN; break;
-      case 1: s.rotation(2, 2) = kInf; break;
-      case 2: s.velocity(0) = -kInf; break;
-      default: s.omega(2) = kNaN; break;
+      case 0:
+        s.position(1) = kNaN;
+        break;
+      case 1:
+        s.rotation(2, 2) = kInf;
+        break;
+      case 2:
+        s.velocity(0) = -kInf;
+        break;
+      default:
+        s.omega(2) = kNaN;
+        break;
     }
     INFO("field " << field);
     CHECK(has(message_of<std::invalid_argument>([&] { (void)scene.add(Ep(kMass), s); }),
@@ -107,8 +115,8 @@ TEST_CASE("bad input: an initial rotation that is not a rotation", "[integrate][
   sheared(0, 1) = 1e-6;
   for (const Matrix3d& r : {zero, scaled, reflection, sheared}) {
     INFO("R =\n" << r);
-    const std::string msg = message_of<std::invalid_argument>(
-        [&] { (void)scene.add(Ep(kMass), {.rotation = r}); });
+    const std::string msg =
+        message_of<std::invalid_argument>([&] { (void)scene.add(Ep(kMass), {.rotation = r}); });
     CHECK(has(msg, "the initial rotation is not a proper rotation matrix"));
   }
 }
@@ -202,9 +210,9 @@ TEST_CASE("bad input: other options out of range", "[integrate][bad_input]") {
 TEST_CASE("bad input: initial states of the wrong size or non-finite", "[integrate][bad_input]") {
   TestScene scene;
   (void)scene.add(Ep(kMass), {.omega = {0, 1, 0}});
-  CHECK(has(message_of<std::invalid_argument>(
-                [&] { SceneIntegrator i(scene, 0.0, VectorXd::Zero(5)); }),
-            "the state has size 5 but the scene has size 14"));
+  CHECK(has(
+      message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, VectorXd::Zero(5)); }),
+      "the state has size 5 but the scene has size 14"));
   VectorXd y = scene.initial_state();
   y(9) = kNaN;
   CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, y); }),
@@ -234,8 +242,7 @@ TEST_CASE("bad input: output times behind the current time or not finite",
 
 // ---- failures during integration ----------------------------------------------------------------
 
-TEST_CASE("bad input: a user force that returns NaN during integration",
-          "[integrate][bad_input]") {
+TEST_CASE("bad input: a user force that returns NaN during integration", "[integrate][bad_input]") {
   TestScene scene;
   const auto id = scene.add(Ep(kMass), {.omega = {0, 1, 0}});
   scene.add_load(id, UserF(TimeForce{[](double t) {
@@ -282,7 +289,8 @@ TEST_CASE("bad input: a user force or an event function that throws", "[integrat
                        if (t > 0.3) throw std::logic_error("root function failed");
                        return 1.0;
                      },
-                     0, {}});
+                     0,
+                     {}});
     SceneIntegrator integrator(scene, 0.0);
     try {
       (void)integrator.advance(1.0);
