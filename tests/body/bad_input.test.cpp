@@ -154,6 +154,13 @@ TEST_CASE("bad input: a quaternion of zero or non-finite norm", "[body][bad_inpu
   // A non-unit quaternion is normalized, not rejected (documented in docs/conventions.md).
   const Vector4d p = EulerParameters::canonical<double>(Vector4d(2, 0, 0, 0));
   CHECK(p(0) == 1.0);
+  // ... also when |p|^2 would underflow or overflow (a fuzz finding): the direction of (1, 2, 2, 4)
+  // scaled by 1e-170 or 1e170 is (1, 2, 2, 4) / 5 whatever the scale.
+  for (const double scale : {1e-170, 1e170, 1e-300, 1e300}) {
+    INFO("scale " << scale);
+    const Vector4d u = EulerParameters::canonical<double>(scale * Vector4d(1, 2, 2, 4));
+    CHECK((u - Vector4d(0.2, 0.4, 0.4, 0.8)).cwiseAbs().maxCoeff() <= 4e-16);
+  }
 }
 
 TEST_CASE("bad input: conversions at a set's singular attitude", "[body][bad_input]") {
@@ -163,6 +170,12 @@ TEST_CASE("bad input: conversions at a set's singular attitude", "[body][bad_inp
       [&] { (void)tumble::RodriguesParameters::from_quaternion<double>(half_turn); });
   CHECK(has(msg, "RodriguesParameters"));
   CHECK(has(msg, "180 degrees"));
+  // So close to 180 degrees that e / e0 overflows (a fuzz finding): reported, not inf.
+  const Eigen::Quaterniond almost_half_turn(1e-320, 1.0, 0.0, 0.0);
+  CHECK(has(message_of<NonFiniteError>([&] {
+              (void)tumble::RodriguesParameters::from_quaternion<double>(almost_half_turn);
+            }),
+            "overflows"));
   // The zero quaternion is no attitude for MRP and the rotation vector.
   const Eigen::Quaterniond zero(0.0, 0.0, 0.0, 0.0);
   CHECK(has(message_of<std::domain_error>(

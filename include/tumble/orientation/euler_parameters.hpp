@@ -12,6 +12,7 @@
 //          its storage (coeffs()) is (x, y, z, w).
 // \warning Every function assumes |p| = 1 (the constraint). canonical() normalizes.
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -127,13 +128,22 @@ struct EulerParameters {
   /// p / |p|. Throws std::domain_error for a zero or non-finite p: there is no attitude to
   /// recover from it.
   template <class S> [[nodiscard]] static Coords<S> canonical(const Coords<S>& p) {
+    using std::abs;
     using std::sqrt;
-    const S n = sqrt(p.squaredNorm());
-    if (!(detail::value(n) > 0) || !detail::isfinite(n)) {
+    // Divide by the largest |e_i| first: |p|^2 of a quaternion of norm 1e-170 or 1e170 would
+    // underflow or overflow (found by fuzz/orientation.fuzz.cpp). The scale is a constant, so an
+    // AD scalar's derivatives are those of p / |p|.
+    using V = decltype(detail::value(p(0)));
+    V scale = 0;
+    for (int i = 0; i < 4; ++i) {
+      scale = std::max(scale, V(abs(detail::value(p(i)))));
+    }
+    if (!(scale > 0) || !std::isfinite(scale)) {
       throw std::domain_error("EulerParameters: cannot normalize a quaternion of zero or "
                               "non-finite norm");
     }
-    return p / n;
+    const Coords<S> q = p / S(scale);
+    return q / sqrt(q.squaredNorm());
   }
 
   /// The holonomic constraint |p|^2 - 1 = 0.

@@ -102,7 +102,8 @@ struct RodriguesParameters {
 
   /// g = e / e0. The ratio does not depend on the sign or the norm of q, so q need not be
   /// normalized.
-  /// \throws NonFiniteError when e0 == 0 (a rotation by exactly 180 degrees, or q = 0).
+  /// \throws NonFiniteError when e0 == 0 (a rotation by exactly 180 degrees, or q = 0), or when
+  ///         g overflows (e0 tiny or q huge).
   template <class S> [[nodiscard]] static Coords<S> from_quaternion(const Eigen::Quaternion<S>& q) {
     if (detail::value(q.w()) == 0) {
       throw NonFiniteError(
@@ -110,7 +111,13 @@ struct RodriguesParameters {
           "Gibbs vector n tan(phi/2) is infinite");
     }
     const S f = S(1) / q.w();
-    return Coords<S>(f * q.x(), f * q.y(), f * q.z());
+    const Coords<S> g(f * q.x(), f * q.y(), f * q.z());
+    if (!detail::all_finite(g)) {  // e0 so small (or q so large) that e / e0 overflows
+      throw NonFiniteError(
+          "RodriguesParameters: the rotation is so close to 180 degrees (or the quaternion so "
+          "large) that its Gibbs vector n tan(phi/2) overflows");
+    }
+    return g;
   }
 
   /// pi - phi with phi = 2 atan|g| in [0, pi): the angle to the nearest rotation by 180 degrees.
