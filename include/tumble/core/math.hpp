@@ -2,7 +2,9 @@
 // Small math helpers shared by every module: the skew-symmetric matrix S(a) of the reference
 // chapter, scalar-type-aware constants and thresholds, and value extraction for AD scalars.
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <limits>
 #include <type_traits>
 
@@ -51,6 +53,19 @@ template <class Derived> [[nodiscard]] bool all_finite(const Eigen::MatrixBase<D
   return true;
 }
 
+/// all_finite for a fixed-size vector on the hot path: x * 0 == 0 holds exactly for finite x and
+/// fails for inf and NaN, and the products and comparisons are independent (SIMD, no dependent
+/// chain of additions as in isfinite(sum)), so the check costs a few cycles of latency.
+template <class Derived>
+[[nodiscard]] bool all_finite_fast(const Eigen::MatrixBase<Derived>& v) {
+  using S = typename Derived::Scalar;
+  if constexpr (std::is_arithmetic_v<S>) {
+    return ((v.array() * S(0)) == S(0)).all();
+  } else {
+    return all_finite(v);
+  }
+}
+
 /// Machine epsilon of the scalar type (of its value type for AD scalars).
 template <class S> [[nodiscard]] constexpr auto epsilon() {
   using V = decltype(value(std::declval<S>()));
@@ -74,6 +89,40 @@ template <class S> [[nodiscard]] S atan(const S& x) {
     one.derivatives().setZero(x.derivatives().size());
     return atan2(x, one);
   }
+}
+
+/// For automatic differentiation scalars (Eigen's AutoDiffScalar): give every entry whose
+/// derivative vector is empty (a constant) zero derivatives of the size the others have. Eigen
+/// reconciles an empty derivative vector with a full one only between plain vectors, not inside a
+/// composite expression, where debug builds assert on the size mismatch. A no-op for arithmetic
+/// scalars. Returns the copies, made coherent, as a tuple.
+template <class... M> [[nodiscard]] auto coherent(const M&... m) {
+  std::tuple<typename M::PlainObject...> copies(m...);
+  if constexpr (!(std::is_arithmetic_v<typename M::Scalar> && ...)) {
+    Eigen::Index n = 0;
+    std::apply(
+        [&](const auto&... c) {
+          ((n = std::max(n, c.size() > 0 ? c.unaryExpr([](const auto& x) {
+                                                      return x.derivatives().size();
+                                                    }).maxCoeff()
+                                         : Eigen::Index(0))),
+           ...);
+        },
+        copies);
+    std::apply(
+        [&](auto&... c) {
+          (([&] {
+             for (Eigen::Index i = 0; i < c.size(); ++i) {
+               if (c(i).derivatives().size() == 0) {
+                 c(i).derivatives().setZero(n);
+               }
+             }
+           }()),
+           ...);
+        },
+        copies);
+  }
+  return copies;
 }
 
 /// Horner evaluation of c[0] + c[1] x + c[2] x^2 + ... with coefficients given in long double

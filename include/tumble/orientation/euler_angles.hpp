@@ -261,14 +261,24 @@ template <int a1, int a2, int a3> struct EulerAngles {
   /// Gdot thetadot (Eq. 1.10).
   template <class S>
   [[nodiscard]] static Vector3<S> Gdot_thetadot(const Coords<S>& theta, const Coords<S>& td) {
-    return gdot_td(Trig23<S>(theta), td);
+    if constexpr (std::is_arithmetic_v<S>) {
+      return gdot_td(Trig23<S>(theta), td);
+    } else {  // AD arguments mixing constants and variables (see detail::coherent)
+      const auto [th, t] = detail::coherent(theta, td);
+      return gdot_td(Trig23<S>(th), t);
+    }
   }
 
   /// thetadot = G^{-1} omega. Divides by cos t2 (Tait-Bryan) or sin t2 (proper): large but
   /// accurate near the singularity, not finite exactly at it.
   template <class S>
   [[nodiscard]] static Coords<S> thetadot(const Coords<S>& theta, const Vector3<S>& omega) {
-    return solve(Trig23<S>(theta), omega);
+    if constexpr (std::is_arithmetic_v<S>) {
+      return solve(Trig23<S>(theta), omega);
+    } else {
+      const auto [th, w] = detail::coherent(theta, omega);
+      return solve(Trig23<S>(th), w);
+    }
   }
 
   /// thetaddot = G^{-1} (alpha - Gdot thetadot), from G thetaddot = alpha - Gdot thetadot
@@ -276,9 +286,16 @@ template <int a1, int a2, int a3> struct EulerAngles {
   template <class S>
   [[nodiscard]] static Coords<S> thetaddot(const Coords<S>& theta, const Coords<S>& td,
                                            const Vector3<S>& alpha) {
-    const Trig23<S> t(theta);
-    const Vector3<S> rhs = alpha - gdot_td(t, td);
-    return solve(t, rhs);
+    if constexpr (std::is_arithmetic_v<S>) {
+      const Trig23<S> t(theta);
+      const Vector3<S> rhs = alpha - gdot_td(t, td);
+      return solve(t, rhs);
+    } else {
+      const auto [th, tdc, a] = detail::coherent(theta, td, alpha);
+      const Trig23<S> t(th);
+      const Vector3<S> rhs = a - gdot_td(t, tdc);
+      return solve(t, rhs);
+    }
   }
 
   /// The principal angles of R, t1, t3 in [-pi, pi] and t2 in [-pi/2, pi/2] (Tait-Bryan) or
