@@ -245,7 +245,7 @@ TEST_CASE("torque-free asymmetric body: the table of errors and costs",
   auto row = [](auto tag) {
     using P = typename decltype(tag)::type;
     for (const CvodeMethod method : {CvodeMethod::adams, CvodeMethod::bdf}) {
-      for (const double tol : {1e-6, 1e-8, 1e-10, 1e-12}) {
+      for (const double tol : {1e-6, 1e-9, 1e-12}) {
         const TumbleRun r = run_tumbling<P>(method, tol);
         std::printf("%-28s %-5s %7.0e %10.2e %10.2e %10.2e %9.1e %9.1e %8ld %8ld %7ld\n",
                     name<P>().c_str(), method_name(method), tol, r.attitude_error,
