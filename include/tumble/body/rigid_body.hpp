@@ -56,9 +56,9 @@ class RigidBody {
   static constexpr int nq = 3 + P::size;  ///< size of q (and of qdot)
 
   using Theta = typename P::template Coords<S>;
-  using Coords = Vector<S, nq>;           ///< q, qdot, qddot, f_v, Q
-  using MassMatrix = Matrix<S, nq, nq>;   ///< M (Eq. 1.23)
-  using PointJacobian = Matrix<S, 3, nq>; ///< L_r (Eq. 1.8)
+  using Coords = Vector<S, nq>;            ///< q, qdot, qddot, f_v, Q
+  using MassMatrix = Matrix<S, nq, nq>;    ///< M (Eq. 1.23)
+  using PointJacobian = Matrix<S, 3, nq>;  ///< L_r (Eq. 1.8)
   using Kinematics = BodyKinematics<S, Ref>;
 
   /// \throws std::invalid_argument if Ref is centroid but the mass properties put the centroid
@@ -283,6 +283,8 @@ class RigidBody {
     // Products are evaluated into named vectors: small expression trees that the compiler inlines
     // whole (nested product expressions were left as out-of-line calls, 30% of the time).
     const Vector3<S> h = ig * om;  // angular momentum about the centroid, body components
+    // Eq. (1.32) through the Newton-Euler closed form of the file comment; Eq. (1.33) at the
+    // centroid, where r_g = 0 removes the coupling terms.
     if constexpr (at_centroid) {
       const Vector3<S> mg = w.moment - om.cross(h);
       alpha = mp_.inertia_centroid_inverse().lazyProduct(mg);
@@ -293,7 +295,7 @@ class RigidBody {
       // Moment about the centroid: M_g = M_c - r_g x F^f.
       const Vector3<S> fb = r.transpose() * w.force;
       const Vector3<S> mg = w.moment - rg.cross(fb) - om.cross(h);
-      alpha.noalias() = mp_.inertia_centroid_inverse() * mg;
+      alpha = mp_.inertia_centroid_inverse().lazyProduct(mg);
       const Vector3<S> ab = alpha.cross(rg) + om.cross(om.cross(rg));
       qdd.template head<3>() = w.force / m - r * ab;
     }

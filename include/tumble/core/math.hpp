@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <limits>
+#include <tuple>
 #include <type_traits>
 
 #include <Eigen/Core>
@@ -56,8 +56,7 @@ template <class Derived> [[nodiscard]] bool all_finite(const Eigen::MatrixBase<D
 /// all_finite for a fixed-size vector on the hot path: x * 0 == 0 holds exactly for finite x and
 /// fails for inf and NaN, and the products and comparisons are independent (SIMD, no dependent
 /// chain of additions as in isfinite(sum)), so the check costs a few cycles of latency.
-template <class Derived>
-[[nodiscard]] bool all_finite_fast(const Eigen::MatrixBase<Derived>& v) {
+template <class Derived> [[nodiscard]] bool all_finite_fast(const Eigen::MatrixBase<Derived>& v) {
   using S = typename Derived::Scalar;
   if constexpr (std::is_arithmetic_v<S>) {
     return ((v.array() * S(0)) == S(0)).all();
@@ -99,28 +98,24 @@ template <class S> [[nodiscard]] S atan(const S& x) {
 template <class... M> [[nodiscard]] auto coherent(const M&... m) {
   std::tuple<typename M::PlainObject...> copies(m...);
   if constexpr (!(std::is_arithmetic_v<typename M::Scalar> && ...)) {
+    const auto for_each_entry = [&copies](auto&& f) {
+      std::apply(
+          [&](auto&... c) {
+            (..., [&] {
+              for (Eigen::Index i = 0; i < c.size(); ++i) {
+                f(c(i));
+              }
+            }());
+          },
+          copies);
+    };
     Eigen::Index n = 0;
-    std::apply(
-        [&](const auto&... c) {
-          ((n = std::max(n, c.size() > 0 ? c.unaryExpr([](const auto& x) {
-                                                      return x.derivatives().size();
-                                                    }).maxCoeff()
-                                         : Eigen::Index(0))),
-           ...);
-        },
-        copies);
-    std::apply(
-        [&](auto&... c) {
-          (([&] {
-             for (Eigen::Index i = 0; i < c.size(); ++i) {
-               if (c(i).derivatives().size() == 0) {
-                 c(i).derivatives().setZero(n);
-               }
-             }
-           }()),
-           ...);
-        },
-        copies);
+    for_each_entry([&](const auto& x) { n = std::max(n, x.derivatives().size()); });
+    for_each_entry([&](auto& x) {
+      if (x.derivatives().size() == 0) {
+        x.derivatives().setZero(n);
+      }
+    });
   }
   return copies;
 }
