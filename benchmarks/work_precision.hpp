@@ -22,8 +22,6 @@
 // Conventions are tumble's (docs/conventions.md): R maps body components to inertial ones,
 // omega is in body components, quaternions are scalar first.
 
-#include <time.h>
-
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -32,6 +30,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <time.h>
 
 namespace tumble::bench {
 
@@ -137,7 +136,7 @@ struct Problem {
 /// The outcome of one method on one problem at one setting.
 struct Run {
   bool ok = true;
-  std::string error;  ///< why it failed, when !ok
+  std::string error;                                         ///< why it failed, when !ok
   double seconds = std::numeric_limits<double>::infinity();  ///< best of `reps`, Timing's clock
   double seconds_median = std::numeric_limits<double>::quiet_NaN();  ///< the same clock
   double wall_seconds = std::numeric_limits<double>::infinity();     ///< best, wall clock
@@ -253,8 +252,8 @@ Run run_pinocchio(const Problem& p, const CvodeSetting& c, const Timing& timing)
 
 struct ScalingRow {
   int bodies = 0;
-  std::string what;  ///< "rhs", "bdf-dense", "bdf-band", "bdf-gmres"
-  double seconds = 0;  ///< per right-hand side, or per BDF step
+  std::string what;     ///< "rhs", "bdf-dense", "bdf-band", "bdf-gmres"
+  double seconds = 0;   ///< per right-hand side, or per BDF step
   double per_body = 0;  ///< seconds / bodies
   long calls = 0;       ///< right-hand sides timed, or BDF steps taken
   long rhs_evals = 0;   ///< BDF: right-hand sides, including those of the Jacobian
@@ -265,13 +264,13 @@ struct ScalingRow {
 };
 
 struct ScalingPlan {
-  std::vector<int> rhs_sizes;    ///< N for the right-hand-side cost
-  std::vector<int> bdf_sizes;    ///< N for the BDF step cost (band and GMRES)
-  int dense_limit = 100;         ///< the dense solver only up to this N
-  int bdf_steps = 60;            ///< BDF steps timed per N
-  double rhs_seconds = 0.02;     ///< time per timed batch of right-hand sides
-  int rhs_batches = 5;           ///< timed batches per N, the best is kept
-  int reps = 3;                  ///< BDF runs per N, the best is kept
+  std::vector<int> rhs_sizes;  ///< N for the right-hand-side cost
+  std::vector<int> bdf_sizes;  ///< N for the BDF step cost (band and GMRES)
+  int dense_limit = 100;       ///< the dense solver only up to this N
+  int bdf_steps = 60;          ///< BDF steps timed per N
+  double rhs_seconds = 0.02;   ///< time per timed batch of right-hand sides
+  int rhs_batches = 5;         ///< timed batches per N, the best is kept
+  int reps = 3;                ///< BDF runs per N, the best is kept
   TimeBase base = TimeBase::wall;
 };
 

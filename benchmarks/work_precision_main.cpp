@@ -69,7 +69,7 @@ struct Options {
   std::string out = TUMBLE_BENCH_DEFAULT_OUT;
   int reps = 3;
   int outputs = 200;
-  std::set<std::string> problems;  // empty: all
+  std::set<std::string> problems;    // empty: all
   std::vector<std::string> methods;  // empty: all; else method labels containing one of these
   std::vector<double> tolerances;    // empty: the default sweep
   bool scaling = true;
@@ -234,7 +234,7 @@ std::string num(double x) {
 
 // ---- the sweep ---------------------------------------------------------------------------------
 
-const std::vector<double> kTolerances = {1e-3, 1e-4, 1e-5, 1e-6,  1e-7, 1e-8,
+const std::vector<double> kTolerances = {1e-3, 1e-4,  1e-5,  1e-6,  1e-7, 1e-8,
                                          1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
 
 enum class Family { tumble, handwritten, pinocchio, rk4 };
@@ -259,8 +259,8 @@ struct Job {
   Family family = Family::tumble;
   const Parameterization* param = nullptr;  // tumble only
   Scheme scheme = Scheme::adams;
-  double tol = 0;     // CVODE methods
-  int substeps = 0;   // RK4: steps per output interval
+  double tol = 0;    // CVODE methods
+  int substeps = 0;  // RK4: steps per output interval
   [[nodiscard]] std::string method() const {
     switch (family) {
       case Family::tumble:
@@ -330,19 +330,17 @@ void write_csv(const std::string& path, const std::vector<Row>& rows) {
     const bool cv = j.family != Family::rk4;
     f << csv_quote(j.problem->id) << ',' << csv_quote(j.method()) << ',' << family_name(j.family)
       << ',' << csv_quote(j.family == Family::tumble ? j.param->name : "EulerParameters") << ','
-      << scheme_name(j.scheme) << ',' << (cv ? num(j.tol) : "") << ','
-      << (cv ? num(j.tol) : "") << ',' << (cv ? num(j.tol) : "") << ','
-      << (cv ? "" : std::to_string(j.substeps)) << ','
-      << (cv ? "" : num(j.problem->times.front() / j.substeps)) << ',' << (r.run.ok ? 1 : 0)
-      << ',' << csv_quote(r.run.error) << ',' << num(r.run.seconds) << ','
-      << num(r.run.seconds_median) << ',' << num(r.run.wall_seconds) << ','
-      << num(r.run.cpu_seconds) << ',' << r.run.reps << ',' << num(r.errors.final_attitude)
-      << ',' << num(r.errors.max_attitude) << ',' << num(r.errors.max_centroid) << ','
-      << num(r.errors.max_omega) << ',' << num(r.errors.energy_drift) << ','
-      << num(r.errors.momentum_drift) << ',' << r.run.steps << ',' << r.run.rhs_evals << ','
-      << r.run.linear_rhs_evals << ',' << r.run.jacobian_evals << ','
-      << r.run.error_test_failures << ',' << r.run.convergence_failures << ',' << r.run.reinits
-      << ',' << r.run.chart_switches << ',' << num(r.run.constraint_drift) << '\n';
+      << scheme_name(j.scheme) << ',' << (cv ? num(j.tol) : "") << ',' << (cv ? num(j.tol) : "")
+      << ',' << (cv ? num(j.tol) : "") << ',' << (cv ? "" : std::to_string(j.substeps)) << ','
+      << (cv ? "" : num(j.problem->times.front() / j.substeps)) << ',' << (r.run.ok ? 1 : 0) << ','
+      << csv_quote(r.run.error) << ',' << num(r.run.seconds) << ',' << num(r.run.seconds_median)
+      << ',' << num(r.run.wall_seconds) << ',' << num(r.run.cpu_seconds) << ',' << r.run.reps << ','
+      << num(r.errors.final_attitude) << ',' << num(r.errors.max_attitude) << ','
+      << num(r.errors.max_centroid) << ',' << num(r.errors.max_omega) << ','
+      << num(r.errors.energy_drift) << ',' << num(r.errors.momentum_drift) << ',' << r.run.steps
+      << ',' << r.run.rhs_evals << ',' << r.run.linear_rhs_evals << ',' << r.run.jacobian_evals
+      << ',' << r.run.error_test_failures << ',' << r.run.convergence_failures << ','
+      << r.run.reinits << ',' << r.run.chart_switches << ',' << num(r.run.constraint_drift) << '\n';
   }
 }
 
@@ -497,8 +495,7 @@ std::string machine_description() {
     << "compiler:  " << compiler() << ", build type " << TUMBLE_BENCH_BUILD_TYPE << ", flags "
     << TUMBLE_BENCH_CXX_FLAGS << "\n"
     << "libraries: SUNDIALS " << SUNDIALS_VERSION << ", Eigen " << EIGEN_WORLD_VERSION << '.'
-    << EIGEN_MAJOR_VERSION << '.' << EIGEN_MINOR_VERSION << ", " << pinocchio_description()
-    << "\n";
+    << EIGEN_MAJOR_VERSION << '.' << EIGEN_MINOR_VERSION << ", " << pinocchio_description() << "\n";
 #ifndef NDEBUG
   s << "WARNING:   assertions are on (no NDEBUG): configure with -DCMAKE_BUILD_TYPE=Release for "
        "meaningful times\n";
@@ -506,7 +503,8 @@ std::string machine_description() {
   return s.str();
 }
 
-// ---- the stiff top's reference --------------------------------------------------------------------
+// ---- the stiff top's reference
+// --------------------------------------------------------------------
 
 /// The stiff top has no closed form. Its reference integrates tumble's equations of the same
 /// body and loads in long double with fixed-step RK4 (h = 5 us, 200,000 steps over 1 s: far
@@ -523,7 +521,8 @@ void make_stiff_reference(Problem& p) {
                      sci(p.reference_uncertainty) + " rad";
 }
 
-// ---- the summary ---------------------------------------------------------------------------------
+// ---- the summary
+// ---------------------------------------------------------------------------------
 
 const std::vector<double> kTargetErrors = {1e-3, 1e-6, 1e-9};
 
@@ -570,8 +569,8 @@ std::string verdict_table(const std::vector<Verdict>& v) {
     << "  status\n";
   s << "  " << std::string(w0 + w1 + w2 + 14, '-') << "\n";
   for (const Verdict& x : v) {
-    s << "  " << pad(x.name, w0) << "  " << pad(x.measured, w1) << "  " << pad(x.target, w2)
-      << "  " << x.status << "\n";
+    s << "  " << pad(x.name, w0) << "  " << pad(x.measured, w1) << "  " << pad(x.target, w2) << "  "
+      << x.status << "\n";
   }
   return s.str();
 }
@@ -613,8 +612,8 @@ void ratio_verdicts(std::vector<Verdict>& out, const Curves& c, const std::vecto
     const auto floor = fastest(c, Family::handwritten, e);
     const std::string at = " at error " + sci(e);
     if (!t) {
-      out.push_back({"tumble vs hand-written floor" + at, "tumble does not reach it", "<= 1.00x",
-                     "MISSED"});
+      out.push_back(
+          {"tumble vs hand-written floor" + at, "tumble does not reach it", "<= 1.00x", "MISSED"});
       continue;
     }
     const std::string who = " (" + t->method + " " + duration(t->at.time) + ")";
@@ -631,26 +630,25 @@ void ratio_verdicts(std::vector<Verdict>& out, const Curves& c, const std::vecto
     }
     const auto pin = fastest(c, Family::pinocchio, e);
     if (!pinocchio_available()) {
-      out.push_back({"Pinocchio-in-CVODE / tumble" + at, "n/a: Pinocchio not installed",
-                     ">= 1.5x", "n/a"});
+      out.push_back(
+          {"Pinocchio-in-CVODE / tumble" + at, "n/a: Pinocchio not installed", ">= 1.5x", "n/a"});
     } else if (pin) {
       const double ratio = pin->at.time / t->at.time;
       out.push_back({"Pinocchio-in-CVODE / tumble" + at,
                      fmt("%.2fx", ratio) + " (" + pin->method + " " + duration(pin->at.time) + ")",
                      ">= 1.5x", ratio >= 1.5 ? "met" : "MISSED"});
     } else {
-      out.push_back({"Pinocchio-in-CVODE / tumble" + at, "Pinocchio does not reach it",
-                     ">= 1.5x", "met"});
+      out.push_back(
+          {"Pinocchio-in-CVODE / tumble" + at, "Pinocchio does not reach it", ">= 1.5x", "met"});
     }
     const auto rk = fastest(c, Family::rk4, e);
     if (rk) {
       const double ratio = rk->at.time / t->at.time;
       out.push_back({"fixed-step RK4 / tumble" + at,
-                     fmt("%.2fx", ratio) + " (RK4 " + time_cell(rk->at) + ")",
-                     ">= 1.5x", ratio >= 1.5 ? "met" : "MISSED"});
+                     fmt("%.2fx", ratio) + " (RK4 " + time_cell(rk->at) + ")", ">= 1.5x",
+                     ratio >= 1.5 ? "met" : "MISSED"});
     } else {
-      out.push_back(
-          {"fixed-step RK4 / tumble" + at, "RK4 does not reach it", ">= 1.5x", "met"});
+      out.push_back({"fixed-step RK4 / tumble" + at, "RK4 does not reach it", ">= 1.5x", "met"});
     }
   }
 }
@@ -720,9 +718,9 @@ std::string scaling_table(const std::vector<ScalingRow>& rows, std::vector<Verdi
   if (hi > 0) {
     const double ratio = hi / lo;
     verdicts.push_back({"rhs cost per body, max/min over N",
-                        fmt("%.2fx", ratio) + " (max " + duration(hi) + " at N=" +
-                            std::to_string(n_hi) + ", min " + duration(lo) + " at N=" +
-                            std::to_string(n_lo) + ")",
+                        fmt("%.2fx", ratio) + " (max " + duration(hi) +
+                            " at N=" + std::to_string(n_hi) + ", min " + duration(lo) +
+                            " at N=" + std::to_string(n_lo) + ")",
                         "<= 1.2x", ratio <= 1.2 ? "met" : "MISSED"});
   }
   // BDF step cost: log-log slope over N >= 100 (where the per-body work dominates CVODE's
@@ -760,7 +758,8 @@ std::string scaling_table(const std::vector<ScalingRow>& rows, std::vector<Verdi
   return s.str();
 }
 
-// ---- plots ---------------------------------------------------------------------------------------
+// ---- plots
+// ---------------------------------------------------------------------------------------
 
 std::string shell_quote(const std::string& s) {
   std::string q = "'";
@@ -782,13 +781,13 @@ void plot(const Options& o, const std::string& out) {
   }
   const std::string check = shell_quote(o.python) + " -c 'import matplotlib' >/dev/null 2>&1";
   if (std::system(check.c_str()) != 0) {
-    std::printf(
-        "plots: skipped, matplotlib is not available to %s (install python3-matplotlib, or "
-        "pass --python); the CSVs are written\n",
-        o.python.c_str());
+    std::printf("plots: skipped, matplotlib is not available to %s (install python3-matplotlib, or "
+                "pass --python); the CSVs are written\n",
+                o.python.c_str());
     return;
   }
-  const std::string cmd = shell_quote(o.python) + " " + shell_quote(script) + " " + shell_quote(out);
+  const std::string cmd =
+      shell_quote(o.python) + " " + shell_quote(script) + " " + shell_quote(out);
   std::fflush(stdout);
   if (std::system(cmd.c_str()) != 0) {
     std::printf("plots: %s failed (the CSVs are written)\n", cmd.c_str());
@@ -820,7 +819,8 @@ std::string micro_summary(const Options& o, const std::string& out) {
   return text.str();
 }
 
-// ---- main ----------------------------------------------------------------------------------------
+// ---- main
+// ----------------------------------------------------------------------------------------
 
 int counter = 0;
 int total = 0;
@@ -843,8 +843,7 @@ void scaling_done(const ScalingRow& r) {
       gmres = ", " + std::to_string(r.linear_iterations) + " GMRES iterations";
     }
     std::printf("%s per step (%ld steps, %ld right-hand sides, %ld Jacobians%s)\n",
-                duration(r.seconds).c_str(), r.calls, r.rhs_evals, r.jacobian_evals,
-                gmres.c_str());
+                duration(r.seconds).c_str(), r.calls, r.rhs_evals, r.jacobian_evals, gmres.c_str());
   }
   std::fflush(stdout);
 }
@@ -916,8 +915,7 @@ int run(const Options& o) {
     plan.rhs_sizes = {1, 3, 10, 30, 100, 300, 1000, 3000, 10000};
     plan.bdf_sizes = {1, 3, 10, 30, 100, 300, 1000, 3000, 10000};
     plan.dense_limit = 200;
-    plan.bdf_sizes.insert(std::lower_bound(plan.bdf_sizes.begin(), plan.bdf_sizes.end(), 200),
-                          200);
+    plan.bdf_sizes.insert(std::lower_bound(plan.bdf_sizes.begin(), plan.bdf_sizes.end(), 200), 200);
   } else {
     plan.rhs_sizes = {1, 3, 10, 30, 100, 300, 1000};
     plan.bdf_sizes = {1, 3, 10, 30, 100, 300, 1000};
@@ -995,8 +993,8 @@ int run(const Options& o) {
     std::ofstream f(out / "problems.csv");
     f << "id,title,reference,reference_uncertainty_rad\n";
     for (const Problem& p : problems) {
-      f << csv_quote(p.id) << ',' << csv_quote(p.title) << ',' << csv_quote(p.reference_note)
-        << ',' << num(p.reference_uncertainty) << '\n';
+      f << csv_quote(p.id) << ',' << csv_quote(p.title) << ',' << csv_quote(p.reference_note) << ','
+        << num(p.reference_uncertainty) << '\n';
     }
   }
 

@@ -116,8 +116,7 @@ Run run_pinocchio(const Problem& p, const CvodeSetting& c, const Timing& timing)
       std::size_t k = 0;
       cvode.integrate(p.times, [&](double, ConstVectorMap y) {
         Sample& s = run.samples[k++];
-        const Eigen::Quaterniond quat =
-            Eigen::Quaterniond(y(6), y(3), y(4), y(5)).normalized();
+        const Eigen::Quaterniond quat = Eigen::Quaterniond(y(6), y(3), y(4), y(5)).normalized();
         s.rotation = quat.toRotationMatrix();
         s.omega = y.segment<3>(10);
         s.position = y.head<3>();

@@ -4,8 +4,9 @@
 //
 // Euler parameters p = (e0, e1, e2, e3), scalar first, with L(p) = [-e | e0 I - S(e)]:
 //   omega = 2 L(p) pdot,  pdot = 1/2 L(p)^T omega                       (reference chapter Eq. 1.5)
-//   omegadot = I^-1 (M - omega x I omega)                    (Euler's equations, about the centroid)
-//   pddot = 1/2 L(p)^T omegadot - |pdot|^2 p       (Eq. 1.10 with Gdot pdot = 0; p.pddot = -|pdot|^2)
+//   omegadot = I^-1 (M - omega x I omega)                    (Euler's equations, about the
+//   centroid) pddot = 1/2 L(p)^T omegadot - |pdot|^2 p       (Eq. 1.10 with Gdot pdot = 0; p.pddot
+//   = -|pdot|^2)
 // Sources of the exact solutions: tests/support/torque_free.hpp (Jacobi elliptic functions for
 // omega, the angular-momentum angles for R; long double) and, under uniform gravity, the
 // parabola of the centroid r_g(t) = r_g(0) + v_g(0) t + g t^2 / 2 (gravity exerts no moment about
@@ -77,15 +78,15 @@ Errors evaluate(const Problem& p, const Run& r) {
     e.max_centroid = std::max(e.max_centroid, (centroid_of(p, s) - centroid_of(p, x)).norm());
     e.max_omega = std::max(e.max_omega, (s.omega - x.omega).norm());
     e.energy_drift = std::max(e.energy_drift, std::abs(energy(p, s) - energy(p, x)) / e_scale);
-    e.momentum_drift =
-        std::max(e.momentum_drift,
-                 (centroid_momentum(p, s) - centroid_momentum(p, x)).norm() / h_scale);
+    e.momentum_drift = std::max(
+        e.momentum_drift, (centroid_momentum(p, s) - centroid_momentum(p, x)).norm() / h_scale);
   }
   e.final_attitude = geodesic_angle(p.reference.back().rotation, r.samples.back().rotation);
   return e;
 }
 
-// ---- timing --------------------------------------------------------------------------------------
+// ---- timing
+// --------------------------------------------------------------------------------------
 
 void record_time(Run& run, std::vector<double>& times, const Stopwatch& watch,
                  const Timing& timing) {
@@ -115,7 +116,8 @@ void finish_timing(Run& run, std::vector<double>& times) {
   run.seconds_median = n % 2 == 1 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
 }
 
-// ---- the problems --------------------------------------------------------------------------------
+// ---- the problems
+// --------------------------------------------------------------------------------
 
 std::vector<Sample> exact_samples(const Problem& p) {
   using test::TorqueFreeBody;
@@ -246,9 +248,8 @@ std::vector<Problem> make_problems(int output_count) {
   Problem thrown;
   thrown.kind = ProblemKind::gravity_offset;
   thrown.id = "gravity_offset";
-  thrown.title =
-      "body framed off its centroid (r_g = (0.3, -0.2, 0.5) m), thrown under gravity, "
-      "omega0 = (0.5, 2, -1) rad/s, T = 5 s";
+  thrown.title = "body framed off its centroid (r_g = (0.3, -0.2, 0.5) m), thrown under gravity, "
+                 "omega0 = (0.5, 2, -1) rad/s, T = 5 s";
   thrown.t_end = 5.0;
   thrown.mass = 2.0;
   thrown.inertia = {1.0, 2.0, 3.0};
@@ -265,9 +266,8 @@ std::vector<Problem> make_problems(int output_count) {
   Problem top;
   top.kind = ProblemKind::stiff_top;
   top.id = "stiff_top";
-  top.title =
-      "spinning top (150 rad/s) held at its tip by a stiff spring-damper, k/m = 1e6 s^-2, "
-      "T = 1 s";
+  top.title = "spinning top (150 rad/s) held at its tip by a stiff spring-damper, k/m = 1e6 s^-2, "
+              "T = 1 s";
   top.t_end = 1.0;
   top.mass = 0.5;
   top.inertia = {1.5e-3, 1.5e-3, 1.0e-3};
@@ -310,7 +310,7 @@ Eigen::Matrix3d rotation_of(const Eigen::Vector4d& p) {
   const double e0 = p(0), e1 = p(1), e2 = p(2), e3 = p(3);
   Eigen::Matrix3d r;
   r << e0 * e0 + e1 * e1 - e2 * e2 - e3 * e3, 2 * (e1 * e2 - e0 * e3), 2 * (e1 * e3 + e0 * e2),  //
-      2 * (e1 * e2 + e0 * e3), e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3, 2 * (e2 * e3 - e0 * e1),    //
+      2 * (e1 * e2 + e0 * e3), e0 * e0 - e1 * e1 + e2 * e2 - e3 * e3, 2 * (e2 * e3 - e0 * e1),   //
       2 * (e1 * e3 - e0 * e2), 2 * (e2 * e3 + e0 * e1), e0 * e0 - e1 * e1 - e2 * e2 + e3 * e3;
   return r;
 }

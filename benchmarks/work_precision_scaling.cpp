@@ -40,12 +40,12 @@ void build_chain(Chain& chain, int n) {
   BodyId<Link> previous{};
   for (int i = 0; i < n; ++i) {
     const double x = i;
-    const BodyId<Link> id = chain.add(
-        Link(mp), {.position = {x, 0.0, 0.0},
-                   .velocity = 0.1 * Eigen::Vector3d(std::sin(1.3 * x), std::cos(0.7 * x),
-                                                     std::sin(2.1 * x + 0.5)),
-                   .omega = 0.5 * Eigen::Vector3d(std::cos(1.1 * x), std::sin(0.9 * x),
-                                                  std::cos(1.7 * x + 0.2))});
+    const BodyId<Link> id =
+        chain.add(Link(mp), {.position = {x, 0.0, 0.0},
+                             .velocity = 0.1 * Eigen::Vector3d(std::sin(1.3 * x), std::cos(0.7 * x),
+                                                               std::sin(2.1 * x + 0.5)),
+                             .omega = 0.5 * Eigen::Vector3d(std::cos(1.1 * x), std::sin(0.9 * x),
+                                                            std::cos(1.7 * x + 0.2))});
     if (i == 0) {
       chain.add_load(id, SpringDamper({-0.4, 0.0, 0.0}, {-0.6, 0.0, 0.0}, spring));
     } else {
@@ -55,9 +55,7 @@ void build_chain(Chain& chain, int n) {
   }
 }
 
-std::string label(const std::string& what, int n) {
-  return what + " N=" + std::to_string(n);
-}
+std::string label(const std::string& what, int n) { return what + " N=" + std::to_string(n); }
 
 ScalingRow measure_rhs(int n, const ScalingPlan& plan) {
   ScalingRow row;

@@ -108,10 +108,9 @@ template <class P> Run run_tumble(const Problem& p, const CvodeSetting& c, const
       return run_scene<SceneT, Body>(p, c, timing, [&](auto& scene) {
         const auto id = scene.add(Body(mass_properties(p)), initial_state(p));
         scene.add_load(id, UniformGravity(p.gravity));
-        scene.add_load(id, SpringDamper(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-                                        {.stiffness = p.stiffness,
-                                         .damping = p.damping,
-                                         .rest_length = 0.0}));
+        scene.add_load(
+            id, SpringDamper(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
+                             {.stiffness = p.stiffness, .damping = p.damping, .rest_length = 0.0}));
         return id;
       });
     }

@@ -58,7 +58,8 @@ template <class From, class To> void check(const Eigen::Vector4d& raw, const Eig
     if ((rt - r).cwiseAbs().maxCoeff() > 1e-8)
       finding("convert() changed the attitude", From::name, To::name);
     const auto back = To::from_rotation(r);
-    if (!back.allFinite()) finding("from_rotation() returned a non-finite value", From::name, To::name);
+    if (!back.allFinite())
+      finding("from_rotation() returned a non-finite value", From::name, To::name);
     if ((To::rotation(back) - r).cwiseAbs().maxCoeff() > 1e-8)
       finding("from_rotation() changed the attitude", From::name, To::name);
     // The rate map, away from the singular attitudes (where G is ill-conditioned by design).

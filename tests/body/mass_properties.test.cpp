@@ -3,13 +3,14 @@
 // solid box in closed form and against point-mass sums; the validation of every input, with the
 // message of each rejection.
 
+#include "tumble/body/mass_properties.hpp"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 #include "support/body_fixtures.hpp"
 #include "support/catch.hpp"
-#include "tumble/body/mass_properties.hpp"
 
 namespace {
 
@@ -74,8 +75,8 @@ TEST_CASE("the point-mass model has the body's mass, first moment and inertia",
     CHECK((tumble::test::cloud_first_moment(body.cloud) - body.mass * body.centroid)
               .cwiseAbs()
               .maxCoeff() < 16 * kEps * body.mass);
-    CHECK(rel_error(tumble::test::cloud_inertia(body.cloud, body.centroid),
-                    body.inertia_centroid) < 64 * kEps);
+    CHECK(rel_error(tumble::test::cloud_inertia(body.cloud, body.centroid), body.inertia_centroid) <
+          64 * kEps);
   }
 }
 
@@ -90,10 +91,9 @@ TEST_CASE("about_centroid and about_reference agree on random bodies (parallel a
     const Matrix3d ig = tumble::test::cloud_inertia(body.cloud, body.centroid);
     const MP from_g = MP::about_centroid(body.mass, body.inertia_centroid, body.centroid);
     const MP from_c = MP::about_reference(body.mass, ic, body.centroid);
-    const double e = std::max({rel_error(from_g.inertia_reference(), ic),
-                               rel_error(from_c.inertia_centroid(), ig),
-                               rel_error(from_c.inertia_reference(), ic),
-                               rel_error(from_g.inertia_centroid(), ig)});
+    const double e = std::max(
+        {rel_error(from_g.inertia_reference(), ic), rel_error(from_c.inertia_centroid(), ig),
+         rel_error(from_c.inertia_reference(), ic), rel_error(from_g.inertia_centroid(), ig)});
     worst = std::max(worst, e);
     // The parallel-axis subtraction I_c - m S(r_g)^T S(r_g) cancels when |m r_g^2| >> |I_g|:
     // the bound scales with |I_c| / |I_g|.

@@ -43,9 +43,8 @@ constexpr bool offset(ReferencePoint r) { return r == ReferencePoint::offset; }
 template <class P, ReferencePoint Ref, class Body>
 Coords<P> accelerations(const Body& body, const tumble::test::State<P>& s,
                         const tumble::test::LoadSet& loads) {
-  return tumble::test::with_elements(loads, [&](const auto&... e) {
-    return tumble::accelerations(body, 0.0, s.q, s.qdot, e...);
-  });
+  return tumble::test::with_elements(
+      loads, [&](const auto&... e) { return tumble::accelerations(body, 0.0, s.q, s.qdot, e...); });
 }
 
 // --- one physics, every parameterization ---------------------------------------------------------
@@ -75,10 +74,10 @@ template <class P, ReferencePoint Ref> void check_newton_euler() {
 
       // alpha = G thetaddot + Gdot thetadot (Eq. 1.10); the centroid by Eq. (1.9).
       const auto th = s.theta();
-      const Vector3d alpha = P::G(th) * qdd.template tail<P::size>() +
-                             P::Gdot_thetadot(th, s.thetadot());
-      const Vector3d ag = qdd.template head<3>() +
-                          s.R * (alpha.cross(rg) + s.omega.cross(s.omega.cross(rg)));
+      const Vector3d alpha =
+          P::G(th) * qdd.template tail<P::size>() + P::Gdot_thetadot(th, s.thetadot());
+      const Vector3d ag =
+          qdd.template head<3>() + s.R * (alpha.cross(rg) + s.omega.cross(s.omega.cross(rg)));
 
       // Newton-Euler in the test, from the physical state itself: m a_g = sum F and
       // I_g alpha + omega x I_g omega = M_g (body components, about the centroid).
@@ -100,8 +99,9 @@ template <class P, ReferencePoint Ref> void check_newton_euler() {
       // the moments is amplified by I_g^{-1}, at most by 1 / (smallest principal moment).
       const double alpha_scale = moment_scale / eig.eigenvalues()(0);
       const double e_alpha = (alpha - alpha_ne).norm() / alpha_scale;
-      const double e_ag = (ag - ag_ne).norm() / (force_scale / model.mass + alpha_scale * rg.norm() +
-                                                  ps.omega.squaredNorm() * rg.norm());
+      const double e_ag =
+          (ag - ag_ne).norm() /
+          (force_scale / model.mass + alpha_scale * rg.norm() + ps.omega.squaredNorm() * rg.norm());
       CHECK(e_alpha < kTol);
       CHECK(e_ag < kTol);
       worst_alpha = std::max(worst_alpha, e_alpha);
@@ -181,7 +181,8 @@ template <class P, ReferencePoint Ref> void check_balance_laws() {
       }
       const Vector3d dp = tumble::test::derivative(body_ad.linear_momentum(q_ad, qd_ad));
       const Vector3d dh = tumble::test::derivative(body_ad.angular_momentum(q_ad, qd_ad));
-      const double ag_scale = f_scale + model.mass * (alpha.norm() + s.omega.squaredNorm()) * rg.norm();
+      const double ag_scale =
+          f_scale + model.mass * (alpha.norm() + s.omega.squaredNorm()) * rg.norm();
       const double ep = (dp - force).norm() / ag_scale;
       // dH_O/dt = r_og x m a_g + R (omega x I_g omega + I_g alpha).
       const double h_scale = m_scale + ig_norm * (s.omega.squaredNorm() + alpha.norm()) +

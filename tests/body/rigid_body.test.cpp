@@ -10,6 +10,8 @@
 //   - non-finite states and loads, the centroid check, and the float / AD instantiations.
 // Every parameterization in tests/support/parameterizations.hpp, both reference points.
 
+#include "tumble/body/rigid_body.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -20,7 +22,6 @@
 #include "support/body_fixtures.hpp"
 #include "support/catch.hpp"
 #include "support/parameterizations.hpp"
-#include "tumble/body/rigid_body.hpp"
 #include "tumble/force/loads.hpp"
 
 namespace {
@@ -243,8 +244,8 @@ template <class P, ReferencePoint Ref> void check_equations_of_motion() {
       if constexpr (P::has_constraint) {
         // The loads do no work against |p| = 1: the multiplier vanishes, and p.pddot = -|pdot|^2.
         CHECK(std::abs(sol(3 + P::size)) < kTol * cond * std::max(1.0, q_test.norm()));
-        CHECK(std::abs(s.theta().dot(qdd.template tail<P::size>()) +
-                       s.thetadot().squaredNorm()) < kTol * (1.0 + s.thetadot().squaredNorm()));
+        CHECK(std::abs(s.theta().dot(qdd.template tail<P::size>()) + s.thetadot().squaredNorm()) <
+              kTol * (1.0 + s.thetadot().squaredNorm()));
       }
 
       // The three routes to qddot agree: loads, the wrench, the generalized force (wrench_from).
@@ -482,7 +483,8 @@ template class tumble::RigidBody<tumble::EulerZXZ, ReferencePoint::offset, AD>;
 template class tumble::RigidBody<tumble::RodriguesParameters, ReferencePoint::offset, AD>;
 #endif
 #ifdef TUMBLE_TEST_HAVE_MRP
-template class tumble::RigidBody<tumble::ModifiedRodriguesParameters, ReferencePoint::offset, float>;
+template class tumble::RigidBody<tumble::ModifiedRodriguesParameters, ReferencePoint::offset,
+                                 float>;
 #endif
 #ifdef TUMBLE_TEST_HAVE_ROTATION_VECTOR
 template class tumble::RigidBody<tumble::RotationVector, ReferencePoint::offset, AD>;
@@ -521,18 +523,18 @@ template <class P, ReferencePoint Ref> void check_scalar_types() {
     const Coords<P> q = to<double>(to<float>(s.q));
     const Coords<P> qdot = to<double>(to<float>(s.qdot));
     const auto run = [&](const auto& body, const auto& qs, const auto& qds, const auto& t) {
-      return tumble::test::with_elements(loads, [&](const auto&... e) {
-        return tumble::accelerations(body, t, qs, qds, e...);
-      });
+      return tumble::test::with_elements(
+          loads, [&](const auto&... e) { return tumble::accelerations(body, t, qs, qds, e...); });
     };
     const Coords<P> qdd_d = run(body_d, q, qdot, 0.0);
 
-    const double ef = std::max(
-        {rel_error(values(body_f.mass_matrix(to<float>(q))), Eigen::MatrixXd(body_d.mass_matrix(q))),
-         rel_error(values(body_f.centrifugal_coriolis(to<float>(q), to<float>(qdot))),
-                   Eigen::MatrixXd(body_d.centrifugal_coriolis(q, qdot))),
-         rel_error(values(run(body_f, to<float>(q), to<float>(qdot), 0.0f)),
-                   Eigen::MatrixXd(qdd_d))});
+    const double ef =
+        std::max({rel_error(values(body_f.mass_matrix(to<float>(q))),
+                            Eigen::MatrixXd(body_d.mass_matrix(q))),
+                  rel_error(values(body_f.centrifugal_coriolis(to<float>(q), to<float>(qdot))),
+                            Eigen::MatrixXd(body_d.centrifugal_coriolis(q, qdot))),
+                  rel_error(values(run(body_f, to<float>(q), to<float>(qdot), 0.0f)),
+                            Eigen::MatrixXd(qdd_d))});
     // float: the same few hundred roundings as kTol, at float's epsilon.
     CHECK(ef < 256 * feps);
     worst_f = std::max(worst_f, ef);

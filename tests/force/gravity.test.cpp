@@ -3,6 +3,8 @@
 // energy -m g . r_og(q), and equals a PointForce at the centroid; a body under gravity alone has
 // its centroid falling with g and turns torque-free.
 
+#include "tumble/force/gravity.hpp"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -10,7 +12,6 @@
 #include "support/body_fixtures.hpp"
 #include "support/catch.hpp"
 #include "support/parameterizations.hpp"
-#include "tumble/force/gravity.hpp"
 #include "tumble/force/loads.hpp"
 #include "tumble/force/point_force.hpp"
 
@@ -136,8 +137,8 @@ TEST_CASE("gravity on a centroidal body needs no rotation matrix", "[force][grav
 }
 
 TEST_CASE("gravity rejects a non-finite g", "[force][gravity]") {
-  for (const double bad : {std::numeric_limits<double>::quiet_NaN(),
-                           std::numeric_limits<double>::infinity()}) {
+  for (const double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     REQUIRE_THROWS_AS(UniformGravity(Vector3d(0.0, bad, -9.81)), std::invalid_argument);
     REQUIRE_THROWS_WITH(UniformGravity(Vector3d(0.0, bad, -9.81)),
                         TUMBLE_CONTAINS("g has a non-finite entry"));

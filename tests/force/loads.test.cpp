@@ -3,13 +3,14 @@
 // accelerations through the loads equal those through the wrench and through Q (Eq. 1.32), also
 // on the path that does not compute R, and with no loads at all (torque-free).
 
+#include "tumble/force/loads.hpp"
+
 #include <limits>
 
 #include "support/body_fixtures.hpp"
 #include "support/catch.hpp"
 #include "support/parameterizations.hpp"
 #include "tumble/force/gravity.hpp"
-#include "tumble/force/loads.hpp"
 #include "tumble/force/point_force.hpp"
 #include "tumble/force/spring_damper.hpp"
 #include "tumble/force/user_force.hpp"
@@ -102,8 +103,7 @@ template <class P> void check_rotation_free_path() {
     moment.apply(0.0, k, w);
     drag.apply(0.0, k, w);
     CHECK(rel_error(body.accelerations(s.q, s.qdot, k, w), a) < kTol);
-    const Vector3d force =
-        model.mass * Vector3d(0, 0, -9.81) - 0.3 * s.qdot.template head<3>();
+    const Vector3d force = model.mass * Vector3d(0, 0, -9.81) - 0.3 * s.qdot.template head<3>();
     CHECK(rel_error(Vector3d(a.template head<3>()), Vector3d(force / model.mass)) < kTol);
   }
 }
@@ -118,11 +118,11 @@ template <class P, ReferencePoint Ref> void check_no_loads() {
     CHECK(rel_error(a, body.accelerations(s.q, s.qdot, tumble::Wrench<double>{})) < kTol);
     CHECK(tumble::generalized_force(body, 0.0, s.q, s.qdot).isZero(0));
     // Torque-free: the centroid does not accelerate (Eq. 1.9 with the library's alpha).
-    const Vector3d alpha = P::G(s.theta()) * a.template tail<P::size>() +
-                           P::Gdot_thetadot(s.theta(), s.thetadot());
+    const Vector3d alpha =
+        P::G(s.theta()) * a.template tail<P::size>() + P::Gdot_thetadot(s.theta(), s.thetadot());
     const Vector3d rg = model.centroid;
-    const Vector3d ag = a.template head<3>() +
-                        s.R * (alpha.cross(rg) + s.omega.cross(s.omega.cross(rg)));
+    const Vector3d ag =
+        a.template head<3>() + s.R * (alpha.cross(rg) + s.omega.cross(s.omega.cross(rg)));
     CHECK(ag.norm() < kTol * (alpha.norm() + s.omega.squaredNorm()) * (1.0 + rg.norm()));
   }
 }
@@ -135,13 +135,13 @@ TEMPLATE_LIST_TEST_CASE("loads: wrench, Q and accelerations are the sums over th
   check_sums<TestType, ReferencePoint::offset>();
 }
 
-TEMPLATE_LIST_TEST_CASE("loads: the path without R equals the path with R",
-                        "[force][loads]", tumble::test::AllParameterizations) {
+TEMPLATE_LIST_TEST_CASE("loads: the path without R equals the path with R", "[force][loads]",
+                        tumble::test::AllParameterizations) {
   check_rotation_free_path<TestType>();
 }
 
-TEMPLATE_LIST_TEST_CASE("loads: no elements is the torque-free body",
-                        "[force][loads]", tumble::test::AllParameterizations) {
+TEMPLATE_LIST_TEST_CASE("loads: no elements is the torque-free body", "[force][loads]",
+                        tumble::test::AllParameterizations) {
   check_no_loads<TestType, ReferencePoint::centroid>();
   check_no_loads<TestType, ReferencePoint::offset>();
 }

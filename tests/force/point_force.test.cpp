@@ -3,6 +3,8 @@
 // components, its virtual work F . delta r_p against AD of the point position (Eqs. 1.13-1.15),
 // the generalized force of a moment [0; G^T M] (Eq. 1.31), and the validation of the inputs.
 
+#include "tumble/force/point_force.hpp"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -11,7 +13,6 @@
 #include "support/catch.hpp"
 #include "support/parameterizations.hpp"
 #include "tumble/force/loads.hpp"
-#include "tumble/force/point_force.hpp"
 
 namespace {
 
@@ -55,8 +56,8 @@ TEST_CASE("point force and moment wrenches by hand", "[force][point_force]") {
   CHECK(w1.moment.norm() < 2 * kTol);
 
   // Body force (0, 2, 0) at body x: inertial (-2, 0, 0); moment (1, 0, 0) x (0, 2, 0) = (0, 0, 2).
-  const auto w2 =
-      tumble::total_wrench(body, 0.0, q, qdot, PointForce(rho, Vector3d(0, 2, 0), Components::body));
+  const auto w2 = tumble::total_wrench(body, 0.0, q, qdot,
+                                       PointForce(rho, Vector3d(0, 2, 0), Components::body));
   CHECK((w2.force - Vector3d(-2, 0, 0)).norm() < 2 * kTol);
   CHECK((w2.moment - Vector3d(0, 0, 2)).norm() < kTol);
 
@@ -106,8 +107,8 @@ template <class P, ReferencePoint Ref> void check_point_force() {
       // AD of the point position (Eq. 1.1) along dq.
       Coords<P> dq = tumble::test::random_vector<nq>(rng);
       dq = tumble::test::tangent_projector(s) * dq;
-      const auto r_ad = tumble::RigidBody<P, Ref, AD>::point_position(
-          tumble::test::along(s.q, dq), tumble::test::constant(rho));
+      const auto r_ad = tumble::RigidBody<P, Ref, AD>::point_position(tumble::test::along(s.q, dq),
+                                                                      tumble::test::constant(rho));
       const Vector3d dr = tumble::test::derivative(r_ad);
       const double ew = std::abs(qi.dot(dq) - f.dot(dr)) / (qi.cwiseAbs().dot(dq.cwiseAbs()));
       CHECK(ew < kTol);

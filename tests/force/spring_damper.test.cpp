@@ -3,6 +3,8 @@
 // conservative part as the gradient of 1/2 k (L - L0)^2 and the dissipation rate -c Ldot^2 (both
 // by AD along the motion), Q = L_r^T F (Eq. 1.28), and every rejection.
 
+#include "tumble/force/spring_damper.hpp"
+
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -11,7 +13,6 @@
 #include "support/catch.hpp"
 #include "support/parameterizations.hpp"
 #include "tumble/force/loads.hpp"
-#include "tumble/force/spring_damper.hpp"
 
 namespace {
 
@@ -155,8 +156,8 @@ template <class P, ReferencePoint Ref> void check_spring_energy() {
       // L = |anchor - r_op(q)| (gradient by AD; tangent space for Euler parameters).
       const SpringDamper spring(rho, anchor, {k, 0.0, l0});
       const Coords<P> qs = tumble::generalized_force(body, 0.0, s.q, s.qdot, spring);
-      const auto r_ad = tumble::RigidBody<P, Ref, AD>::point_position(
-          tumble::test::seeded(s.q, nq), tumble::test::constant(rho));
+      const auto r_ad = tumble::RigidBody<P, Ref, AD>::point_position(tumble::test::seeded(s.q, nq),
+                                                                      tumble::test::constant(rho));
       const Eigen::Matrix<AD, 3, 1> d_ad = tumble::test::constant(anchor) - r_ad;
       const AD len = sqrt(d_ad.squaredNorm());
       const AD v = AD(0.5 * k) * (len - AD(l0)) * (len - AD(l0));

@@ -3,6 +3,8 @@
 // equals a PointForce, NeedsRotation is declared at compile time, and a non-finite wrench throws
 // NonFiniteError.
 
+#include "tumble/force/user_force.hpp"
+
 #include <cmath>
 #include <limits>
 #include <type_traits>
@@ -12,7 +14,6 @@
 #include "support/parameterizations.hpp"
 #include "tumble/force/loads.hpp"
 #include "tumble/force/point_force.hpp"
-#include "tumble/force/user_force.hpp"
 
 namespace {
 
@@ -54,8 +55,8 @@ struct Broken {
 
 static_assert(tumble::ForceElement<tumble::UserForce<RampAtPoint>>);
 static_assert(tumble::ForceElement<tumble::UserForce<tumble::test::Drag, false>>);
-static_assert(decltype(tumble::make_user_force(RampAtPoint{}))::needs_rotation(
-    ReferencePoint::centroid));
+static_assert(
+    decltype(tumble::make_user_force(RampAtPoint{}))::needs_rotation(ReferencePoint::centroid));
 static_assert(!decltype(tumble::make_user_force<false>(tumble::test::Drag{}))::needs_rotation(
     ReferencePoint::centroid));
 static_assert(!tumble::loads_need_rotation<Body<EP, ReferencePoint::centroid>,
@@ -126,8 +127,8 @@ TEST_CASE("a user force returning a non-finite wrench throws NonFiniteError",
   Coords<EP> q, qdot;
   q << 0, 0, 0, 1, 0, 0, 0;
   qdot << 1, 0, 0, 0, 0.1, 0, 0;
-  for (const double bad : {std::numeric_limits<double>::quiet_NaN(),
-                           std::numeric_limits<double>::infinity()}) {
+  for (const double bad :
+       {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
     for (int entry = 0; entry < 6; ++entry) {
       INFO("entry " << entry << " value " << bad);
       const auto user = tumble::make_user_force(Broken{entry, bad});

@@ -60,7 +60,6 @@ using tumble::test::AllParameterizations;
 using tumble::test::rotation_angle_between;
 using tumble::test::TorqueFreeBody;
 
-
 Matrix3d rot(double angle, const Vector3d& axis) {
   return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
 }

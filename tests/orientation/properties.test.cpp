@@ -78,6 +78,7 @@ namespace {
 
 namespace detail = tumble::detail;
 namespace test = tumble::test;
+using test::AD;
 using tumble::convert;
 using tumble::EulerParameters;
 using tumble::Matrix;
@@ -86,7 +87,6 @@ using tumble::Orientation;
 using tumble::skew;
 using tumble::Vector3;
 using tumble::Vector4;
-using test::AD;
 using LD = long double;
 
 using Scalars = std::tuple<double, float, AD>;

@@ -64,7 +64,6 @@ using EPOff = RigidBody<EulerParameters, ReferencePoint::offset>;
 using ZYXOff = RigidBody<EulerZYX, ReferencePoint::offset>;
 using RV = RigidBody<RotationVector>;
 
-
 Matrix3d rot(double angle, const Vector3d& axis) {
   return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
 }

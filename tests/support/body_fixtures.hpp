@@ -185,8 +185,7 @@ inline BodyModel random_body(Random& rng, bool offset, double side_min = 0.2,
   const Vector3d sides(rng.uniform(side_min, side_max), rng.uniform(side_min, side_max),
                        rng.uniform(side_min, side_max));
   const Vector3d sq = sides.cwiseProduct(sides);
-  const Vector3d moments =
-      b.mass / 12.0 * Vector3d(sq(1) + sq(2), sq(0) + sq(2), sq(0) + sq(1));
+  const Vector3d moments = b.mass / 12.0 * Vector3d(sq(1) + sq(2), sq(0) + sq(2), sq(0) + sq(1));
   const Matrix3d axes = rng.rotation();
   b.inertia_centroid = axes * moments.asDiagonal() * axes.transpose();
   b.inertia_centroid = 0.5 * (b.inertia_centroid + b.inertia_centroid.transpose()).eval();
@@ -279,7 +278,8 @@ template <class P> State<P> make_state(const PhysicalState& ps) {
 /// relative errors measure the code, not the conditioning of G at a singularity).
 inline constexpr double kMinSingularityDistance = 0.3;
 
-template <class P> bool usable(const PhysicalState& ps, double min_distance = kMinSingularityDistance) {
+template <class P>
+bool usable(const PhysicalState& ps, double min_distance = kMinSingularityDistance) {
   return detail::value(P::singularity_distance(P::from_rotation(ps.rotation))) >= min_distance;
 }
 
@@ -294,7 +294,8 @@ template <class P> State<P> random_state(Random& rng) {
 
 /// The projector onto the tangent space of the constraint (identity for three-parameter sets):
 /// blockdiag(I, I - p p^T / |p|^2).
-template <class P> Eigen::Matrix<double, 3 + P::size, 3 + P::size> tangent_projector(const State<P>& s) {
+template <class P>
+Eigen::Matrix<double, 3 + P::size, 3 + P::size> tangent_projector(const State<P>& s) {
   Eigen::Matrix<double, 3 + P::size, 3 + P::size> t;
   t.setIdentity();
   if constexpr (P::has_constraint) {
@@ -307,7 +308,8 @@ template <class P> Eigen::Matrix<double, 3 + P::size, 3 + P::size> tangent_proje
 // --- the chapter's sums, evaluated in the test ---------------------------------------------------
 
 /// Eq. (1.8): L_r = [I, -R S(rho) G].
-template <class P> Eigen::Matrix<double, 3, 3 + P::size> jacobian(const State<P>& s, const Vector3d& rho) {
+template <class P>
+Eigen::Matrix<double, 3, 3 + P::size> jacobian(const State<P>& s, const Vector3d& rho) {
   Eigen::Matrix<double, 3, 3 + P::size> l;
   l.template leftCols<3>().setIdentity();
   l.template rightCols<P::size>() = -s.R * skew(rho) * P::G(s.theta());
@@ -322,7 +324,9 @@ template <class P> Vector3d velocity_acceleration(const State<P>& s, const Vecto
 }
 
 /// Eq. (1.18) as a sum over the point masses: M = sum m_i L_i^T L_i.
-template <class P> Eigen::Matrix<double, 3 + P::size, 3 + P::size> cloud_mass_matrix(const BodyModel& b, const State<P>& s) {
+template <class P>
+Eigen::Matrix<double, 3 + P::size, 3 + P::size> cloud_mass_matrix(const BodyModel& b,
+                                                                  const State<P>& s) {
   Eigen::Matrix<double, 3 + P::size, 3 + P::size> m;
   m.setZero();
   for (const auto& p : b.cloud) {
@@ -333,7 +337,8 @@ template <class P> Eigen::Matrix<double, 3 + P::size, 3 + P::size> cloud_mass_ma
 }
 
 /// Eq. (1.19) as a sum over the point masses: f_v = -sum m_i L_i^T a_v,i.
-template <class P> typename State<P>::Coords cloud_centrifugal_coriolis(const BodyModel& b, const State<P>& s) {
+template <class P>
+typename State<P>::Coords cloud_centrifugal_coriolis(const BodyModel& b, const State<P>& s) {
   typename State<P>::Coords f = State<P>::Coords::Zero();
   for (const auto& p : b.cloud) {
     f -= p.mass * jacobian(s, p.rho).transpose() * velocity_acceleration(s, p.rho);
@@ -345,7 +350,9 @@ template <class P> typename State<P>::Coords cloud_centrifugal_coriolis(const Bo
 /// sum m_i |L_i|^T |L_i| and sum m_i |L_i|^T |a_v,i|. Relative errors of M and f_v are measured
 /// against these: an entry that cancels to nearly zero has rounding errors of the size of its
 /// terms.
-template <class P> Eigen::Matrix<double, 3 + P::size, 3 + P::size> cloud_mass_matrix_scale(const BodyModel& b, const State<P>& s) {
+template <class P>
+Eigen::Matrix<double, 3 + P::size, 3 + P::size> cloud_mass_matrix_scale(const BodyModel& b,
+                                                                        const State<P>& s) {
   Eigen::Matrix<double, 3 + P::size, 3 + P::size> m;
   m.setZero();
   for (const auto& p : b.cloud) {
@@ -354,7 +361,8 @@ template <class P> Eigen::Matrix<double, 3 + P::size, 3 + P::size> cloud_mass_ma
   }
   return m;
 }
-template <class P> typename State<P>::Coords cloud_centrifugal_coriolis_scale(const BodyModel& b, const State<P>& s) {
+template <class P>
+typename State<P>::Coords cloud_centrifugal_coriolis_scale(const BodyModel& b, const State<P>& s) {
   typename State<P>::Coords f = State<P>::Coords::Zero();
   for (const auto& p : b.cloud) {
     f += p.mass * jacobian(s, p.rho).cwiseAbs().transpose() *
@@ -463,12 +471,14 @@ template <class P> PhysicalState physical(const State<P>& s) {
   return {s.R, s.omega, s.q.template head<3>(), s.qdot.template head<3>()};
 }
 
-template <class P> AppliedForces applied_forces(const BodyModel& b, const State<P>& s, const LoadSet& l) {
+template <class P>
+AppliedForces applied_forces(const BodyModel& b, const State<P>& s, const LoadSet& l) {
   return applied_forces(b, physical(s), l);
 }
 
 /// Eqs. (1.28), (1.31): Q = sum L_r(rho_j)^T F_j + [0; G^T M].
-template <class P> typename State<P>::Coords generalized_force(const State<P>& s, const AppliedForces& a) {
+template <class P>
+typename State<P>::Coords generalized_force(const State<P>& s, const AppliedForces& a) {
   typename State<P>::Coords q = State<P>::Coords::Zero();
   for (const auto& [rho, f] : a.forces) {
     q += jacobian(s, rho).transpose() * f;

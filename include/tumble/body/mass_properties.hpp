@@ -23,8 +23,8 @@ template <class S = double> class MassProperties {
  public:
   /// Inertia `inertia` about the centroid; the centroid at `centroid` in body components
   /// relative to the reference point (zero when the body frame sits at the centroid).
-  [[nodiscard]] static MassProperties about_centroid(const S& mass, const Matrix3<S>& inertia,
-                                                     const Vector3<S>& centroid = Vector3<S>::Zero()) {
+  [[nodiscard]] static MassProperties about_centroid(
+      const S& mass, const Matrix3<S>& inertia, const Vector3<S>& centroid = Vector3<S>::Zero()) {
     return MassProperties(mass, inertia, centroid);
   }
 

@@ -115,8 +115,7 @@ struct EulerParameters {
     return Eigen::Quaternion<S>(p(0), p(1), p(2), p(3));  // w-first constructor
   }
 
-  template <class S>
-  [[nodiscard]] static Coords<S> from_quaternion(const Eigen::Quaternion<S>& q) {
+  template <class S> [[nodiscard]] static Coords<S> from_quaternion(const Eigen::Quaternion<S>& q) {
     return Coords<S>(q.w(), q.x(), q.y(), q.z());
   }
 

@@ -46,10 +46,10 @@ template <class... L> struct Loads {};
 
 /// The physical initial state of one body.
 struct InitialState {
-  Vector3<double> position = Vector3<double>::Zero();  ///< r_oc, inertial, m
+  Vector3<double> position = Vector3<double>::Zero();      ///< r_oc, inertial, m
   Matrix3<double> rotation = Matrix3<double>::Identity();  ///< R, body -> inertial
-  Vector3<double> velocity = Vector3<double>::Zero();  ///< rdot_oc, inertial, m/s
-  Vector3<double> omega = Vector3<double>::Zero();     ///< angular velocity, body, rad/s
+  Vector3<double> velocity = Vector3<double>::Zero();      ///< rdot_oc, inertial, m/s
+  Vector3<double> omega = Vector3<double>::Zero();         ///< angular velocity, body, rad/s
 };
 
 /// A typed handle to a body of a scene.
@@ -88,7 +88,7 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
                 "bodies integrated with CVODE use the scalar type double");
   static_assert(((detail::count<B, B...>() == 1) && ...), "list each body type once");
   static_assert(((detail::count<L, L...>() == 1) && ...), "list each load type once");
-  static_assert(((ForceElement<L> || CouplingElement<L>) && ...),
+  static_assert(((ForceElement<L> || CouplingElement<L>)&&...),
                 "each load type must be a ForceElement (one body) or a CouplingElement (two)");
 
   template <class Body> struct Entry {
@@ -438,9 +438,8 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
   /// Total linear momentum, inertial components.
   template <class Y> [[nodiscard]] Vector3<double> linear_momentum(const Y& y) const {
     Vector3<double> p = Vector3<double>::Zero();
-    for_each_entry([&](const auto& e) {
-      p += e.body.mass_properties().mass() * centroid_velocity(e, y);
-    });
+    for_each_entry(
+        [&](const auto& e) { p += e.body.mass_properties().mass() * centroid_velocity(e, y); });
     return p;
   }
   /// Total angular momentum about the inertial origin, inertial components.
@@ -501,13 +500,12 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
         !detail::all_finite(s.velocity) || !detail::all_finite(s.omega)) {
       throw std::invalid_argument("tumble::Scene::add: the initial state has a non-finite entry");
     }
-    const double orth = (s.rotation.transpose() * s.rotation - Matrix3<double>::Identity())
-                            .cwiseAbs()
-                            .maxCoeff();
+    const double orth =
+        (s.rotation.transpose() * s.rotation - Matrix3<double>::Identity()).cwiseAbs().maxCoeff();
     if (orth > 1e-9 || s.rotation.determinant() < 0) {
-      throw std::invalid_argument(
-          "tumble::Scene::add: the initial rotation is not a proper rotation matrix (|R^T R - I| = " +
-          std::to_string(orth) + ")");
+      throw std::invalid_argument("tumble::Scene::add: the initial rotation is not a proper "
+                                  "rotation matrix (|R^T R - I| = " +
+                                  std::to_string(orth) + ")");
     }
   }
 
@@ -519,8 +517,7 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
   static typename Body::Theta thetadot_of(const Entry<Body>& e, const Y& y) {
     return y.template segment<Body::n_theta>(e.offset + Body::nq + 3);
   }
-  template <class Body, class Y>
-  static Vector3<double> omega_of(const Entry<Body>& e, const Y& y) {
+  template <class Body, class Y> static Vector3<double> omega_of(const Entry<Body>& e, const Y& y) {
     return Body::Param::G(theta_of(e, y)) * thetadot_of(e, y);
   }
   template <class Body, class Y>
