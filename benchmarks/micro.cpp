@@ -14,7 +14,8 @@
 // R and G do not depend on the reference point and are timed once per parameterization. The
 // baselines (dense LU, hand-written closed form) are in micro_baselines.cpp, the peers in
 // micro_pinocchio.cpp and micro_mujoco.cpp; benchmarks/summarize_micro.py turns the JSON output
-// into the ratios issue 4 sets targets for.
+// into the ratios issue 4 sets targets for. micro_jacobian.cpp times the scene's Jacobian
+// (automatic differentiation) against difference quotients.
 
 #include <cstdio>
 #include <string>
@@ -110,6 +111,7 @@ constexpr const char* kCompiler =
 int main(int argc, char** argv) {
   tumble::bench::register_tumble();
   tumble::bench::register_baselines();
+  tumble::bench::register_jacobian();
 #ifdef TUMBLE_BENCH_HAVE_PINOCCHIO
   tumble::bench::register_pinocchio();
 #endif

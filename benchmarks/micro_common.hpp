@@ -141,6 +141,7 @@ template <class F> void add(const std::string& name, F&& fn) {
 /// only when they are built (TUMBLE_BENCH_HAVE_PINOCCHIO, TUMBLE_BENCH_HAVE_MUJOCO).
 void register_tumble();
 void register_baselines();
+void register_jacobian();
 void register_pinocchio();
 void register_mujoco();
 

@@ -138,8 +138,9 @@ def plot_scaling(results):
     left.set_title("right-hand-side cost per body (flat = O(N))")
     left.grid(True, which="both", alpha=0.3)
     left.legend(fontsize=8)
-    labels = {"bdf-dense": ("dense LU", "tab:red", "s"),
-              "bdf-band": ("band LU", "tab:green", "o"),
+    labels = {"bdf-dense": ("dense LU, exact Jacobian", "tab:red", "s"),
+              "bdf-band": ("band LU, exact Jacobian", "tab:green", "o"),
+              "bdf-band-dq": ("band LU, difference quotients", "tab:olive", "x"),
               "bdf-gmres": ("GMRES (matrix-free)", "tab:purple", "^")}
     for key, (label, color, marker) in labels.items():
         if key in series:

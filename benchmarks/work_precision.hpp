@@ -220,6 +220,9 @@ std::vector<Sample> exact_samples(const Problem& p);
 struct CvodeSetting {
   Scheme scheme = Scheme::adams;
   double tol = 1e-6;
+  /// BDF: tumble's scenes give CVODE their exact Jacobian (Scene::jacobian); false: CVODE's
+  /// difference quotients (tumble_bench --difference-quotients)
+  bool exact_jacobian = true;
 };
 
 /// tumble with parameterization P (a function per parameterization, see work_precision_tumble.hpp).

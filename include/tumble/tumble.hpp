@@ -7,13 +7,16 @@
 //   body/          MassProperties, RigidBody<P, ReferencePoint, Scalar>, Wrench, kinematics
 //   force/         UniformGravity, PointForce, BodyMoment, SpringDamper, SpringDamperBetween,
 //                  UserForce, UserCoupling; total_wrench, generalized_force, accelerations
-//   scene/         Scene<Bodies<...>, Loads<...>>, charts of three-parameter sets
+//   scene/         Scene<Bodies<...>, Loads<...>>, charts of three-parameter sets; the scene's
+//                  Jacobian (core/jet.hpp: Jet<N> automatic differentiation; BandMatrixMap)
 
 #include "tumble/body/kinematics.hpp"
 #include "tumble/body/mass_properties.hpp"
 #include "tumble/body/rigid_body.hpp"
 #include "tumble/body/wrench.hpp"
+#include "tumble/core/band_matrix.hpp"
 #include "tumble/core/errors.hpp"
+#include "tumble/core/jet.hpp"
 #include "tumble/core/math.hpp"
 #include "tumble/core/types.hpp"
 #include "tumble/force/concept.hpp"

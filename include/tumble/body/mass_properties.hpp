@@ -11,6 +11,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include <Eigen/Eigenvalues>
 
@@ -37,6 +38,17 @@ template <class S = double> class MassProperties {
     check_finite(inertia, "inertia about the reference point");
     return MassProperties(mass, inertia - parallel_axis(mass, centroid), centroid);
   }
+
+  /// The same mass properties in another scalar type (for example Jet<N>, to differentiate),
+  /// converted entry by entry and not validated again: the source was.
+  template <class T>
+  requires(!std::is_same_v<T, S>) explicit MassProperties(const MassProperties<T>& other)
+      : mass_(S(other.mass())),
+        centroid_(other.centroid().template cast<S>()),
+        first_moment_(other.first_moment().template cast<S>()),
+        inertia_centroid_(other.inertia_centroid().template cast<S>()),
+        inertia_reference_(other.inertia_reference().template cast<S>()),
+        inertia_inverse_(other.inertia_centroid_inverse().template cast<S>()) {}
 
   [[nodiscard]] const S& mass() const { return mass_; }
   /// r_g: the centroid relative to the reference point, body components.

@@ -21,6 +21,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include <Eigen/Cholesky>
 
@@ -72,6 +73,11 @@ class RigidBody {
       }
     }
   }
+
+  /// The same body in another scalar type (for example Jet<N>, to differentiate).
+  template <class T>
+  requires(!std::is_same_v<T, S>) explicit RigidBody(const RigidBody<P, Ref, T>& other)
+      : mp_(other.mass_properties()) {}
 
   [[nodiscard]] const MassProperties<S>& mass_properties() const { return mp_; }
 

@@ -7,6 +7,7 @@
 // conserved, and the total angular momentum too when the forces are central).
 
 #include <concepts>
+#include <type_traits>
 #include <utility>
 
 #include "tumble/force/concept.hpp"
@@ -17,7 +18,9 @@ namespace tumble {
 template <class C>
 concept CouplingElement = requires(const C& c, const double& t, const KinematicsView<double>& ka,
                                    const KinematicsView<double>& kb, Wrench<double>& wa,
-                                   Wrench<double>& wb) { c.apply(t, ka, kb, wa, wb); };
+                                   Wrench<double>& wb) {
+  c.apply(t, ka, kb, wa, wb);
+};
 
 /// A linear spring-damper between the body point `point_a` of body a and `point_b` of body b
 /// (body components of each). Force law as for SpringDamper (spring_damper.hpp).
@@ -33,11 +36,12 @@ class SpringDamperBetween {
   }
 
   template <class S>
-  void apply(const S& /*t*/, const KinematicsView<S>& a, const KinematicsView<S>& b,
-             Wrench<S>& wa, Wrench<S>& wb) const {
+  void apply(const S& /*t*/, const KinematicsView<S>& a, const KinematicsView<S>& b, Wrench<S>& wa,
+             Wrench<S>& wb) const {
     const Vector3<S> ra = detail::cast<S>(point_a_), rb = detail::cast<S>(point_b_);
-    const Vector3<S> f = detail::spring_damper_force<S>(
-        sd_, a.point_position(ra), a.point_velocity(ra), b.point_position(rb), b.point_velocity(rb));
+    const Vector3<S> f =
+        detail::spring_damper_force<S>(sd_, a.point_position(ra), a.point_velocity(ra),
+                                       b.point_position(rb), b.point_velocity(rb));
     wa.add_force(a.rotation, ra, f);
     wb.add_force(b.rotation, rb, Vector3<S>(-f));
   }
@@ -68,9 +72,12 @@ static_assert(CouplingElement<SpringDamperBetween>);
 template <class F> class UserCoupling {
  public:
   explicit UserCoupling(F f) : f_(std::move(f)) {}
+  /// Available for the scalar types the callable accepts (see UserForce::apply).
   template <class S>
-  void apply(const S& t, const KinematicsView<S>& a, const KinematicsView<S>& b, Wrench<S>& wa,
-             Wrench<S>& wb) const {
+  requires std::is_invocable_v < const F&, const S&, const KinematicsView<S>
+  &, const KinematicsView<S>&, Wrench<S>&,
+      Wrench<S>& > void apply(const S& t, const KinematicsView<S>& a, const KinematicsView<S>& b,
+                              Wrench<S>& wa, Wrench<S>& wb) const {
     f_(t, a, b, wa, wb);
   }
 

@@ -20,8 +20,13 @@ template <class F, bool NeedsRotation = true> class UserForce {
   static constexpr bool needs_rotation(ReferencePoint /*ref*/) { return NeedsRotation; }
 
   /// \throws NonFiniteError if the callable returns a non-finite wrench.
+  /// Available for the scalar types the callable accepts: a callable written for any scalar (a
+  /// template) lets a scene differentiate it exactly (Scene::jacobian).
   template <class S, ReferencePoint Ref>
-  void apply(const S& t, const BodyKinematics<S, Ref>& k, Wrench<S>& w) const {
+  requires std::is_invocable_r_v < Wrench<S>,
+  const F&, const S&,
+      const BodyKinematics<S, Ref>& >
+          void apply(const S& t, const BodyKinematics<S, Ref>& k, Wrench<S>& w) const {
     const Wrench<S> u = f_(t, k);
     if (!detail::isfinite(u.force.sum() + u.moment.sum())) [[unlikely]] {
       throw NonFiniteError("tumble::UserForce: the user force returned a non-finite wrench");

@@ -54,6 +54,7 @@
 #include <sunmatrix/sunmatrix_dense.h>
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
+#include "tumble/core/band_matrix.hpp"
 #include "tumble/integrate/detail/cvode_flags.hpp"
 #include "tumble/integrate/detail/sundials.hpp"
 #include "tumble/integrate/errors.hpp"
@@ -84,6 +85,14 @@ concept CvodeSystem = requires(std::remove_cvref_t<S>& s, const std::remove_cvre
 template <class S>
 concept CvodeHasJacobian = requires(std::remove_cvref_t<S>& s, double t, ConstVectorMap y,
                                     ConstVectorMap fy, MatrixMap jac) {
+  s.jacobian(t, y, fy, jac);
+};
+
+/// Optional: the same into CVODE's band matrix (BandMatrixMap: write only entries in_band(i, j)),
+/// used with the BDF band linear solver. A system may provide both, or one template for both.
+template <class S>
+concept CvodeHasBandJacobian = requires(std::remove_cvref_t<S>& s, double t, ConstVectorMap y,
+                                        ConstVectorMap fy, BandMatrixMap jac) {
   s.jacobian(t, y, fy, jac);
 };
 
@@ -151,7 +160,8 @@ enum class CvodeMethod {
 /// Linear solver of the Newton iteration (BDF only).
 enum class CvodeLinearSolver {
   dense,  ///< dense LU; uses the system's jacobian() when it has one
-  band,   ///< banded LU with the half-bandwidths of CvodeOptions; banded difference quotients
+  band,   ///< banded LU with the half-bandwidths of CvodeOptions; uses the system's band
+          ///< jacobian() when it has one, else banded difference quotients
   gmres,  ///< matrix-free GMRES (difference-quotient J v), optionally preconditioned
 };
 
@@ -178,7 +188,9 @@ struct CvodeOptions {
   int lower_bandwidth = -1;
   int krylov_dimension = 0;  ///< GMRES: maximum Krylov subspace dimension, 0: SUNDIALS' 5
   CvodePreconditioning preconditioning = CvodePreconditioning::left;  ///< GMRES
-  bool use_system_jacobian = true;  ///< dense: use System::jacobian() when the system has one
+  /// dense and band: use System::jacobian() when the system has one (false: CVODE's difference
+  /// quotients)
+  bool use_system_jacobian = true;
 
   int max_error_test_failures = 7;    ///< per step (CVodeSetMaxErrTestFails)
   int max_nonlinear_iterations = 3;   ///< per nonlinear solve (CVodeSetMaxNonlinIters)
@@ -624,6 +636,11 @@ template <class System> class CvodeCore {
         linear_solver_.reset(require_allocated(SUNLinSol_Band(y_.get(), matrix_.get(), ctx)));
         check(CVodeSetLinearSolver(mem, linear_solver_.get(), matrix_.get()),
               "CVodeSetLinearSolver");
+        if constexpr (CvodeHasBandJacobian<SystemType>) {
+          if (options_.use_system_jacobian) {
+            check(CVodeSetJacFn(mem, &CvodeCore::jacobian_callback), "CVodeSetJacFn");
+          }
+        }
         break;
       case CvodeLinearSolver::gmres: {
         int side = SUN_PREC_NONE;
@@ -826,15 +843,28 @@ template <class System> class CvodeCore {
                                N_Vector, N_Vector, N_Vector) noexcept {
     auto& self = *static_cast<CvodeCore*>(data);
     return self.guarded("jacobian()", t, true, [&] {
-      if constexpr (CvodeHasJacobian<SystemType>) {
-        MatrixMap j(SUNDenseMatrix_Data(jac), static_cast<Eigen::Index>(self.n_),
-                    static_cast<Eigen::Index>(self.n_));
-        self.system_.jacobian(t, self.cview(y), self.cview(fy), j);
-        if (!std::isfinite(j.sum())) {
-          self.report_.note_recoverable("jacobian()", t,
-                                        "the Jacobian has a non-finite entry (NaN or inf)");
-          return 1;
+      const auto n = static_cast<Eigen::Index>(self.n_);
+      double sum = 0.0;
+      if (SUNMatGetID(jac) == SUNMATRIX_BAND) {
+        if constexpr (CvodeHasBandJacobian<SystemType>) {
+          const BandMatrixMap j(SUNBandMatrix_Data(jac), n, SUNBandMatrix_LDim(jac),
+                                SUNBandMatrix_StoredUpperBandwidth(jac),
+                                SUNBandMatrix_UpperBandwidth(jac),
+                                SUNBandMatrix_LowerBandwidth(jac));
+          self.system_.jacobian(t, self.cview(y), self.cview(fy), j);
+          sum = ConstVectorMap(SUNBandMatrix_Data(jac), SUNBandMatrix_LDim(jac) * n).sum();
         }
+      } else {
+        if constexpr (CvodeHasJacobian<SystemType>) {
+          MatrixMap j(SUNDenseMatrix_Data(jac), n, n);
+          self.system_.jacobian(t, self.cview(y), self.cview(fy), j);
+          sum = j.sum();
+        }
+      }
+      if (!std::isfinite(sum)) {
+        self.report_.note_recoverable("jacobian()", t,
+                                      "the Jacobian has a non-finite entry (NaN or inf)");
+        return 1;
       }
       return 0;
     });

@@ -8,6 +8,9 @@
 // - Three-parameter sets: one root function per body watches the distance to the chart's
 //   singularity; at a root the chart is re-centered (MRP: shadow set) and CVODE restarts.
 // - User events: the scene's root functions and actions, with a restart when the state changes.
+// - BDF's Newton iteration gets the exact Jacobian df/dy (dense or band) by automatic
+//   differentiation (Scene::jacobian) when every load can be differentiated; otherwise, or with
+//   CvodeOptions::use_system_jacobian = false, CVODE forms it by difference quotients.
 // A NonFiniteError met in the right-hand side becomes a recoverable error: CVODE retries with a
 // smaller step, and reports an IntegrationError if it cannot recover.
 
@@ -60,6 +63,19 @@ template <class SceneT> class SceneSystem {
   void roots(double t, ConstVectorMap y, VectorMap g) { scene_->roots(t, y, g); }
   bool on_root(double t, VectorMap y, std::span<const int> which) {
     return scene_->on_root(t, y, which.data());
+  }
+
+  /// J = df/dy by automatic differentiation (Scene::jacobian), dense or band; only when every
+  /// load of the scene can be differentiated (Scene::differentiable), otherwise CVODE forms J by
+  /// difference quotients.
+  template <class Jac>
+  requires SceneT::differentiable void jacobian(double t, ConstVectorMap y, ConstVectorMap /*fy*/,
+                                                Jac jac) {
+    try {
+      scene_->jacobian(t, y, jac);
+    } catch (const NonFiniteError& e) {
+      throw RecoverableError(e.what());
+    }
   }
 
   void project(double /*t*/, ConstVectorMap y, VectorMap corr, double /*eps*/, VectorMap err) {

@@ -20,6 +20,7 @@
 //   the body's own time scale without adding stiffness.
 // - Three-parameter sets are re-centered (or MRP shadowed) through root functions.
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <functional>
@@ -33,7 +34,9 @@
 #include <Eigen/Core>
 
 #include "tumble/body/rigid_body.hpp"
+#include "tumble/core/band_matrix.hpp"
 #include "tumble/core/errors.hpp"
+#include "tumble/core/jet.hpp"
 #include "tumble/force/concept.hpp"
 #include "tumble/force/coupling.hpp"
 #include "tumble/orientation/euler_parameters.hpp"
@@ -78,6 +81,23 @@ template <class T, class... Ts> constexpr std::size_t index_of() {
 }
 template <class T, class... Ts> constexpr bool contains = (std::is_same_v<T, Ts> || ...);
 template <class T, class... Ts> constexpr int count() { return (int(std::is_same_v<T, Ts>) + ...); }
+
+/// A load the scene can evaluate in Jet scalars, so that its Jacobian is exact (Scene::jacobian):
+/// its apply() is a template over the scalar type, as every tumble load is. A user callable
+/// written for double (UserForce/UserCoupling over a function of double) is not, and a scene
+/// with one leaves its Jacobian to CVODE's difference quotients.
+template <class L>
+concept DifferentiableLoad = requires(const L& l, const Jet<2>& t,
+                                      const BodyKinematics<Jet<2>, ReferencePoint::centroid>& k0,
+                                      const BodyKinematics<Jet<2>, ReferencePoint::offset>& k1,
+                                      Wrench<Jet<2>>& w) {
+  l.apply(t, k0, w);
+  l.apply(t, k1, w);
+}
+|| requires(const L& l, const Jet<2>& t, const KinematicsView<Jet<2>>& ka,
+            const KinematicsView<Jet<2>>& kb, Wrench<Jet<2>>& wa, Wrench<Jet<2>>& wb) {
+  l.apply(t, ka, kb, wa, wb);
+};
 }  // namespace detail
 
 template <class BodyList, class LoadList = Loads<>> class Scene;
@@ -111,6 +131,11 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
 
  public:
   using State = Eigen::VectorXd;
+
+  /// True when every load type can be evaluated in Jet scalars: then jacobian() is available.
+  static constexpr bool differentiable = (detail::DifferentiableLoad<L> && ...);
+  /// True when some load type acts between two bodies.
+  static constexpr bool has_couplings = (CouplingElement<L> || ...);
 
   Scene() = default;
   // Kinematics views point into the body storage: copying would leave them dangling.
@@ -207,6 +232,7 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
     for (std::size_t i = 0; i < events_.size(); ++i) {
       directions_[chart_bodies_.size() + i] = events_[i].direction;
     }
+    index_loads(std::index_sequence_for<L...>{});
     prepared_ = true;
   }
 
@@ -235,6 +261,41 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
     });
     apply_loads(t);
     for_each_entry([&](auto& e) { write_derivative(e, y, ydot); });
+  }
+
+  // --- the Jacobian ---------------------------------------------------------------------------
+  /// Adds J = df/dy at (t, y) into `jac`, which must hold zeros on entry: an Eigen dense matrix
+  /// (or Map) of size() x size(), or a BandMatrixMap (entries outside its band are dropped).
+  ///
+  /// Computed exactly (to rounding) by forward-mode automatic differentiation in Jet<N> scalars,
+  /// block by block, never as a whole (reference chapter notation, f = [qdot; qddot] per body):
+  /// - the rows of qdot are [0 I];
+  /// - body k's block d qddot_k / d(q_k, qdot_k) comes from one evaluation of its kinematics, its
+  ///   one-body loads and its accelerations (the Baumgarte term included) with its own state
+  ///   seeded, N = 2 nq_k directions; the wrenches of its couplings enter at their value;
+  /// - a coupling between bodies a and b adds B_a dW_a/d(y_a, y_b) to the rows of qddot_a (and the
+  ///   same for b), where B_a = d qddot_a / dW_a is found in body a's evaluation (6 more
+  ///   directions: qddot is affine in the wrench) and dW_a/d(y_a, y_b) from one evaluation of the
+  ///   coupling with both states seeded (N = 2 nq_a + 2 nq_b).
+  /// The cost is linear in the number of bodies and couplings, and nothing is allocated.
+  /// Throws NonFiniteError where rhs() would.
+  template <class Y, class Jac>
+  requires differentiable void jacobian(double t, const Y& y, Jac& jac) {
+    if (!prepared_) [[unlikely]] {
+      prepare();
+    }
+    if constexpr (has_couplings) {
+      // The coupling wrenches at y, in double: body blocks need their value.
+      for_each_entry([&](auto& e) {
+        evaluate_kinematics(e, y);
+        wrench_[e.id] = Wrench<double>{};
+      });
+      (apply_coupling_type<L>(t), ...);
+    }
+    for_each_entry([&](const auto& e) { body_block(e, t, y, jac); });
+    if constexpr (has_couplings) {
+      (coupling_blocks<L>(t, y, jac), ...);
+    }
   }
 
   // --- constraints and charts -----------------------------------------------------------------
@@ -580,26 +641,221 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
 
   template <class Body, class Y, class Ydot>
   void write_derivative(const Entry<Body>& e, const Y& y, Ydot& ydot) const {
-    using P = typename Body::Param;
     constexpr int nq = Body::nq;
     const typename Body::Coords q = y.template segment<nq>(e.offset);
     const typename Body::Coords qd = y.template segment<nq>(e.offset + nq);
-    typename Body::Coords qdd = e.body.accelerations(q, qd, e.kin, wrench_[e.id]);
-    if constexpr (P::has_constraint) {
+    ydot.template segment<nq>(e.offset) = qd;
+    ydot.template segment<nq>(e.offset + nq) =
+        accelerations_of(e.body, q, qd, e.kin, wrench_[e.id]);
+  }
+
+  /// qddot of `body` (the scene's body, or the same in Jet scalars), with the constraint
+  /// stabilization of Euler parameters when it is on.
+  template <class JBody>
+  Vector<typename JBody::Scalar, JBody::nq> accelerations_of(
+      const JBody& body, const typename JBody::Coords& q, const typename JBody::Coords& qd,
+      const typename JBody::Kinematics& k, const Wrench<typename JBody::Scalar>& w) const {
+    using S = typename JBody::Scalar;
+    typename JBody::Coords qdd = body.accelerations(q, qd, k, w);
+    if constexpr (JBody::Param::has_constraint) {
       if (stabilize_) {
         // Baumgarte: p.pddot = -|pdot|^2 - 2 g (p.pdot) - g^2 (|p|^2 - 1)/2, g = |omega|. The
         // body imposed p.pddot = -|pdot|^2 assuming |p| = 1; add the difference along p.
-        const Vector4<double> p = q.template tail<4>();
-        const Vector4<double> pd = qd.template tail<4>();
-        const double pp = p.squaredNorm();
-        const double g2 = e.kin.omega.squaredNorm();
-        const double g = std::sqrt(g2);
-        const double nu = -(pd.squaredNorm() + 2.0 * g * p.dot(pd) + 0.5 * g2 * (pp - 1.0)) / pp;
+        using std::sqrt;
+        const Vector4<S> p = q.template tail<4>();
+        const Vector4<S> pd = qd.template tail<4>();
+        const S pp = p.squaredNorm();
+        const S g2 = k.omega.squaredNorm();
+        // g = |omega| is not differentiable at omega = 0, where its jet would be 0/0: take the
+        // one-sided derivative 0 there (the term 2 g (p.pdot) vanishes on the manifold anyway).
+        S g = S(0);
+        if (detail::value(g2) > 0) {
+          g = sqrt(g2);
+        }
+        const S nu = -(pd.squaredNorm() + S(2) * g * p.dot(pd) + S(0.5) * g2 * (pp - S(1))) / pp;
         qdd.template tail<4>() += (nu + pd.squaredNorm()) * p;
       }
     }
-    ydot.template segment<nq>(e.offset) = qd;
-    ydot.template segment<nq>(e.offset + nq) = qdd;
+    return qdd;
+  }
+
+  // --- pieces of the Jacobian (see jacobian()) ------------------------------------------------
+  /// Kinematics of body e in Jet scalars from its jet coordinates (chart base included).
+  template <class Body, class S>
+  static void jet_kinematics(const Entry<Body>& e, const Vector<S, Body::nq>& q,
+                             const Vector<S, Body::nq>& qd, bool with_rotation,
+                             BodyKinematics<S, Body::reference>& k) {
+    using P = typename Body::Param;
+    const typename P::template Coords<S> th = q.template tail<Body::n_theta>();
+    k.position = q.template head<3>();
+    k.velocity = qd.template head<3>();
+    k.omega = P::G(th) * qd.template tail<Body::n_theta>();
+    if (with_rotation || !Body::at_centroid) {
+      k.rotation = P::rotation(th);
+      if (e.has_base) {
+        k.rotation = (e.base.template cast<S>() * k.rotation).eval();
+      }
+    }
+  }
+
+  template <class Body, class Y, class Jac>
+  void body_block(const Entry<Body>& e, double t, const Y& y, Jac& jac) {
+    constexpr int nq = Body::nq;
+    detail::add_block(jac, e.offset, e.offset + nq, Matrix<double, nq, nq>::Identity());
+    if constexpr (has_couplings) {
+      if (coupled_[e.id] != 0) {
+        body_block_in<2 * nq + 6>(e, t, y, jac);
+        return;
+      }
+    }
+    body_block_in<2 * nq>(e, t, y, jac);
+  }
+
+  /// Body e's block in Jet<N>: its own state seeded along directions [0, 2 nq), and when
+  /// N = 2 nq + 6 the wrench along [2 nq, 2 nq + 6), giving B = d qddot / dW for its couplings.
+  template <int N, class Body, class Y, class Jac>
+  void body_block_in(const Entry<Body>& e, double t, const Y& y, Jac& jac) {
+    constexpr int nq = Body::nq;
+    using J = Jet<N>;
+    const RigidBody<typename Body::Param, Body::reference, J> body(e.body);
+    const Vector<J, nq> q = detail::seed<N>(y.template segment<nq>(e.offset), 0);
+    const Vector<J, nq> qd = detail::seed<N>(y.template segment<nq>(e.offset + nq), nq);
+    BodyKinematics<J, Body::reference> k;
+    k.mass_properties = &body.mass_properties();
+    jet_kinematics(e, q, qd, e.needs_rotation, k);
+    Wrench<J> w;
+    const J tj(t);
+    apply_one_body_loads(e.id, tj, k, w, std::index_sequence_for<L...>{});
+    if constexpr (N > 2 * nq) {
+      w.force += detail::seed<N>(wrench_[e.id].force, 2 * nq);
+      w.moment += detail::seed<N>(wrench_[e.id].moment, 2 * nq + 3);
+    }
+    const Matrix<double, nq, N> d = detail::derivatives(accelerations_of(body, q, qd, k, w));
+    detail::add_block(jac, e.offset + nq, e.offset, d.template leftCols<2 * nq>());
+    if constexpr (N > 2 * nq) {
+      gain_[e.id].template topRows<nq>() = d.template rightCols<6>();
+    }
+  }
+
+  template <class S, class K, std::size_t... I>
+  void apply_one_body_loads([[maybe_unused]] int id, [[maybe_unused]] const S& t,
+                            [[maybe_unused]] const K& k, [[maybe_unused]] Wrench<S>& w,
+                            std::index_sequence<I...>) const {
+    (
+        [&] {
+          using Load = std::tuple_element_t<I, std::tuple<L...>>;
+          if constexpr (ForceElement<Load>) {
+            const auto& list = std::get<I>(loads_);
+            const LoadIndex& index = by_body_[I];
+            for (int j = index.start[id]; j < index.start[id + 1]; ++j) {
+              list[index.items[j]].load.apply(t, k, w);
+            }
+          }
+        }(),
+        ...);
+  }
+
+  template <class Load> void apply_coupling_type(double t) {
+    if constexpr (CouplingElement<Load>) {
+      for (const Attached<Load>& a : std::get<std::vector<Attached<Load>>>(loads_)) {
+        a.load.apply(t, *views_[a.a], *views_[a.b], wrench_[a.a], wrench_[a.b]);
+      }
+    }
+  }
+
+  /// The blocks of every coupling of type Load: dW/d(y_a, y_b) in Jet<2 nq_a + 2 nq_b>, times the
+  /// gains B_a and B_b of the body blocks.
+  template <class Load, class Y, class Jac> void coupling_blocks(double t, const Y& y, Jac& jac) {
+    if constexpr (CouplingElement<Load>) {
+      for (const Attached<Load>& at : std::get<std::vector<Attached<Load>>>(loads_)) {
+        const Location la = locations_[at.a], lb = locations_[at.b];
+        visit_group(la.group, [&](const auto& ga) {
+          visit_group(lb.group, [&](const auto& gb) {
+            coupling_block(at.load, ga[la.local], gb[lb.local], t, y, jac);
+          });
+        });
+      }
+    }
+  }
+
+  template <class Load, class BodyA, class BodyB, class Y, class Jac>
+  void coupling_block(const Load& load, const Entry<BodyA>& ea, const Entry<BodyB>& eb, double t,
+                      const Y& y, Jac& jac) const {
+    constexpr int na = BodyA::nq, nb = BodyB::nq, N = 2 * na + 2 * nb;
+    using J = Jet<N>;
+    const RigidBody<typename BodyA::Param, BodyA::reference, J> ba(ea.body);
+    const RigidBody<typename BodyB::Param, BodyB::reference, J> bb(eb.body);
+    BodyKinematics<J, BodyA::reference> ka;
+    BodyKinematics<J, BodyB::reference> kb;
+    ka.mass_properties = &ba.mass_properties();
+    kb.mass_properties = &bb.mass_properties();
+    jet_kinematics(ea, Vector<J, na>(detail::seed<N>(y.template segment<na>(ea.offset), 0)),
+                   Vector<J, na>(detail::seed<N>(y.template segment<na>(ea.offset + na), na)), true,
+                   ka);
+    jet_kinematics(
+        eb, Vector<J, nb>(detail::seed<N>(y.template segment<nb>(eb.offset), 2 * na)),
+        Vector<J, nb>(detail::seed<N>(y.template segment<nb>(eb.offset + nb), 2 * na + nb)), true,
+        kb);
+    Wrench<J> wa, wb;
+    load.apply(J(t), static_cast<const KinematicsView<J>&>(ka),
+               static_cast<const KinematicsView<J>&>(kb), wa, wb);
+    add_coupling_rows<na>(ea.id, ea.offset, wa, ea.offset, eb.offset, na, jac);
+    add_coupling_rows<nb>(eb.id, eb.offset, wb, ea.offset, eb.offset, na, jac);
+  }
+
+  /// Rows of qddot of the body (id, offset) += B dW/d(y_a, y_b) for a wrench W in jets whose
+  /// directions are [y_a (2 na); y_b].
+  template <int n, class J, class Jac>
+  void add_coupling_rows(int id, int offset, const Wrench<J>& w, int offset_a, int offset_b, int na,
+                         Jac& jac) const {
+    constexpr int N = J::DerType::RowsAtCompileTime;
+    Matrix<double, 6, N> dw;
+    dw.template topRows<3>() = detail::derivatives(w.force);
+    dw.template bottomRows<3>() = detail::derivatives(w.moment);
+    const Matrix<double, n, N> rows = gain_[id].template topRows<n>() * dw;
+    detail::add_block(jac, offset + n, offset_a, rows.leftCols(2 * na));
+    detail::add_block(jac, offset + n, offset_b, rows.rightCols(N - 2 * na));
+  }
+
+  /// For each one-body load type, the loads on each body (a compressed index: the loads of body
+  /// k are items[start[k] .. start[k + 1])), so that a body's block visits only its own loads.
+  struct LoadIndex {
+    std::vector<int> start;
+    std::vector<int> items;
+  };
+  template <std::size_t... I> void index_loads(std::index_sequence<I...>) {
+    const int n = body_count();
+    (
+        [&] {
+          const auto& list = std::get<I>(loads_);
+          LoadIndex& index = by_body_[I];
+          index.start.assign(n + 1, 0);
+          index.items.assign(list.size(), 0);
+          for (const auto& a : list) {
+            ++index.start[a.a + 1];
+          }
+          for (int k = 0; k < n; ++k) {
+            index.start[k + 1] += index.start[k];
+          }
+          std::vector<int> next(index.start.begin(), index.start.end() - 1);
+          for (std::size_t j = 0; j < list.size(); ++j) {
+            index.items[next[list[j].a]++] = static_cast<int>(j);
+          }
+        }(),
+        ...);
+    coupled_.assign(n, 0);
+    (
+        [&] {
+          for (const auto& a : std::get<I>(loads_)) {
+            if (a.b >= 0) {
+              coupled_[a.a] = coupled_[a.b] = 1;
+            }
+          }
+        }(),
+        ...);
+    if constexpr (has_couplings) {
+      gain_.assign(n, Matrix<double, 7, 6>::Zero());
+    }
   }
 
   template <class Body, class Y> void leave_chart(Entry<Body>& e, Y& y) {
@@ -666,6 +922,9 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
   std::vector<const KinematicsView<double>*> views_;
   std::vector<int> chart_bodies_;
   std::vector<int> directions_;
+  std::array<LoadIndex, sizeof...(L)> by_body_;
+  std::vector<char> coupled_;               ///< per body: 1 when a coupling acts on it
+  std::vector<Matrix<double, 7, 6>> gain_;  ///< per body: B = d qddot / dW (jacobian())
   State y0_;
   int size_ = 0;
   bool prepared_ = false;
