@@ -337,7 +337,8 @@ struct StiffRun {
 };
 
 template <class P>
-StiffRun stiff_tops(tumble::CvodeLinearSolver solver, bool exact_jacobian, double tol = 1e-8) {
+StiffRun stiff_tops(tumble::CvodeLinearSolver solver, bool exact_jacobian, double tol = 1e-8,
+                    tumble::CvodePreconditioning side = tumble::CvodePreconditioning::left) {
   using Top = RigidBody<P, ReferencePoint::offset>;
   using Hanging = RigidBody<tumble::RotationVector, ReferencePoint::offset>;
   Scene<Bodies<Top, Hanging>,
@@ -365,6 +366,7 @@ StiffRun stiff_tops(tumble::CvodeLinearSolver solver, bool exact_jacobian, doubl
   o.cvode.max_steps = 1000000;
   o.cvode.linear_solver = solver;
   o.cvode.use_system_jacobian = exact_jacobian;
+  o.cvode.preconditioning = side;
   tumble::SceneIntegrator integrator(scene, 0.0, o);
   StiffRun r;
   r.y = integrator.advance(2.0);
@@ -405,5 +407,37 @@ TEMPLATE_TEST_CASE("BDF with the exact Jacobian: the difference-quotient run's t
     INFO("error against rtol 1e-12: exact " << err_exact << ", difference quotients " << err_dq);
     CHECK(err_exact < 2 * err_dq + 1e-7);
     CHECK(err_exact < 1e-4);
+  }
+}
+
+TEMPLATE_TEST_CASE("GMRES with the block preconditioner: fewer iterations, the same accuracy",
+                   "[scene][jacobian][preconditioner][integrate]", tumble::EulerParameters,
+                   tumble::EulerZYX) {
+  using P = TestType;
+  const auto gmres = tumble::CvodeLinearSolver::gmres;
+  const StiffRun ref = stiff_tops<P>(tumble::CvodeLinearSolver::dense, true, 1e-12);
+  const StiffRun none = stiff_tops<P>(gmres, true, 1e-8, tumble::CvodePreconditioning::none);
+  const StiffRun left = stiff_tops<P>(gmres, true, 1e-8, tumble::CvodePreconditioning::left);
+  const StiffRun right = stiff_tops<P>(gmres, true, 1e-8, tumble::CvodePreconditioning::right);
+  for (const StiffRun* run : {&none, &left, &right}) {
+    INFO((run == &none   ? "none"
+          : run == &left ? "left"
+                         : "right")
+         << ": " << run->stats.steps << " steps, " << run->stats.linear_iterations
+         << " GMRES iterations, " << run->stats.preconditioner_setups << " setups, "
+         << run->stats.nonlinear_convergence_failures << " convergence failures; error "
+         << (run->y - ref.y).cwiseAbs().maxCoeff());
+    CHECK((run->y - ref.y).cwiseAbs().maxCoeff() < 1e-4);
+  }
+  CHECK(none.stats.preconditioner_setups == 0);
+  for (const StiffRun* run : {&left, &right}) {
+    CHECK(run->stats.preconditioner_setups > 0);
+    CHECK(run->stats.preconditioner_solves > 0);
+    // The spring's stiffness sits in the top's own block: preconditioned, GMRES needs fewer
+    // iterations in all and per step (measured: 1179 and 1210 against 5315 for Euler
+    // parameters, 1951 and 2293 against 4270 for ZYX).
+    CHECK(run->stats.linear_iterations < none.stats.linear_iterations);
+    CHECK(double(run->stats.linear_iterations) / double(run->stats.steps) <
+          double(none.stats.linear_iterations) / double(none.stats.steps));
   }
 }

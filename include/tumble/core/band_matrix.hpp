@@ -40,10 +40,13 @@ namespace detail {
 
 /// jac(r0 + i, c0 + j) += block(i, j): all of it for a dense Eigen matrix (or Map), the entries
 /// inside the band for a BandMatrixMap (a band narrower than the Jacobian's own drops the rest,
-/// as CVODE's banded difference quotients do).
+/// as CVODE's banded difference quotients do), or whatever a storage with its own
+/// add_block(r0, c0, block) keeps (the scene's block-diagonal preconditioner).
 template <class Jac, class Derived>
 void add_block(Jac& jac, Eigen::Index r0, Eigen::Index c0, const Eigen::MatrixBase<Derived>& b) {
-  if constexpr (std::is_same_v<std::remove_cv_t<Jac>, BandMatrixMap>) {
+  if constexpr (requires { jac.add_block(r0, c0, b); }) {
+    jac.add_block(r0, c0, b);
+  } else if constexpr (std::is_same_v<std::remove_cv_t<Jac>, BandMatrixMap>) {
     for (Eigen::Index j = 0; j < b.cols(); ++j) {
       for (Eigen::Index i = 0; i < b.rows(); ++i) {
         if (jac.in_band(r0 + i, c0 + j)) {

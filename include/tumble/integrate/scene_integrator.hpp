@@ -10,7 +10,9 @@
 // - User events: the scene's root functions and actions, with a restart when the state changes.
 // - BDF's Newton iteration gets the exact Jacobian df/dy (dense or band) by automatic
 //   differentiation (Scene::jacobian) when every load can be differentiated; otherwise, or with
-//   CvodeOptions::use_system_jacobian = false, CVODE forms it by difference quotients.
+//   CvodeOptions::use_system_jacobian = false, CVODE forms it by difference quotients. With
+//   GMRES the same blocks give a block-Jacobi preconditioner, one LU of I - gamma J_kk per body
+//   (CvodeOptions::preconditioning: left by default, or right, or none).
 // A NonFiniteError met in the right-hand side becomes a recoverable error: CVODE retries with a
 // smaller step, and reports an IntegrationError if it cannot recover.
 
@@ -73,6 +75,26 @@ template <class SceneT> class SceneSystem {
                                                 Jac jac) {
     try {
       scene_->jacobian(t, y, jac);
+    } catch (const NonFiniteError& e) {
+      throw RecoverableError(e.what());
+    }
+  }
+
+  /// Block-Jacobi preconditioner for GMRES (Scene::precondition_setup/solve): one LU of
+  /// I - gamma J_kk per body. Only for differentiable scenes (it needs the exact blocks).
+  bool precondition_setup(double t, ConstVectorMap y, ConstVectorMap /*fy*/, bool jacobian_ok,
+                          double gamma) requires SceneT::differentiable {
+    try {
+      return scene_->precondition_setup(t, y, jacobian_ok, gamma);
+    } catch (const NonFiniteError& e) {
+      throw RecoverableError(e.what());
+    }
+  }
+  void precondition_solve(double /*t*/, ConstVectorMap /*y*/, ConstVectorMap /*fy*/,
+                          ConstVectorMap r, VectorMap z, double /*gamma*/, double /*delta*/,
+                          int /*lr*/) requires SceneT::differentiable {
+    try {
+      scene_->precondition_solve(r, z);
     } catch (const NonFiniteError& e) {
       throw RecoverableError(e.what());
     }
@@ -157,6 +179,13 @@ template <class SceneT> class SceneIntegrator {
       options.cvode.upper_bandwidth = options.cvode.lower_bandwidth = scene.half_bandwidth();
     }
     scene.set_constraint_stabilization(!project);
+    if constexpr (SceneT::differentiable) {
+      if (options.cvode.method == CvodeMethod::bdf &&
+          options.cvode.linear_solver == CvodeLinearSolver::gmres &&
+          options.cvode.preconditioning != CvodePreconditioning::none) {
+        scene.prepare_preconditioner();
+      }
+    }
     return Cvode<detail::SceneSystem<SceneT>>(detail::SceneSystem<SceneT>(scene), t0, y,
                                               std::move(options.cvode));
   }

@@ -32,6 +32,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include "tumble/body/rigid_body.hpp"
 #include "tumble/core/band_matrix.hpp"
@@ -233,6 +234,7 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
       directions_[chart_bodies_.size() + i] = events_[i].direction;
     }
     index_loads(std::index_sequence_for<L...>{});
+    preconditioner_ready_ = false;
     prepared_ = true;
   }
 
@@ -295,6 +297,81 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
     for_each_entry([&](const auto& e) { body_block(e, t, y, jac); });
     if constexpr (has_couplings) {
       (coupling_blocks<L>(t, y, jac), ...);
+    }
+  }
+
+  // --- block-Jacobi preconditioner (BDF with GMRES) --------------------------------------------
+  /// Allocates the preconditioner's blocks; called by SceneIntegrator for GMRES. After it,
+  /// precondition_setup() and precondition_solve() allocate nothing.
+  void prepare_preconditioner() requires differentiable {
+    if (!prepared_) {
+      prepare();
+    }
+    owner_.assign(size_, -1);
+    block_data_.assign(body_count(), nullptr);
+    block_start_.assign(body_count(), 0);
+    block_size_.assign(body_count(), 0);
+    for_each_group_with_blocks([&](auto& entries, auto& blocks) {
+      blocks.resize(entries.size());
+      for (std::size_t i = 0; i < entries.size(); ++i) {
+        const auto& e = entries[i];
+        const int m = static_cast<int>(blocks[i].j.rows());
+        for (int r = 0; r < m; ++r) {
+          owner_[e.offset + r] = e.id;
+        }
+        block_data_[e.id] = blocks[i].j.data();
+        block_start_[e.id] = e.offset;
+        block_size_[e.id] = m;
+      }
+    });
+    preconditioner_ready_ = true;
+  }
+
+  /// P = I - gamma J_D, where J_D is the block diagonal of J = df/dy: one block [q_k; qdot_k] per
+  /// body, its own loads and the part of its couplings that acts on its own state (a stiff spring
+  /// between two bodies shows in both blocks). LU-factored per body, so the cost is linear in the
+  /// bodies. When jacobian_ok, the saved J_D is reused and only gamma changes. Returns true when
+  /// J_D was recomputed (CVODE's jcur).
+  template <class Y>
+  bool precondition_setup(double t, const Y& y, bool jacobian_ok,
+                          double gamma) requires differentiable {
+    if (!preconditioner_ready_) [[unlikely]] {
+      prepare_preconditioner();
+    }
+    if (!jacobian_ok) {
+      for_each_group_with_blocks([](auto&, auto& blocks) {
+        for (auto& b : blocks) {
+          b.j.setZero();
+        }
+      });
+      DiagonalSink sink{this};
+      jacobian(t, y, sink);
+    }
+    for_each_group_with_blocks([gamma](auto&, auto& blocks) {
+      for (auto& b : blocks) {
+        using M = std::remove_cvref_t<decltype(b.j)>;
+        b.lu.compute(M(M::Identity() - gamma * b.j));
+      }
+    });
+    return !jacobian_ok;
+  }
+
+  /// z = P^{-1} r, body by body (after precondition_setup()). Throws NonFiniteError when the
+  /// result is not finite (a singular block).
+  template <class R, class Z> void precondition_solve(const R& r, Z&& z) {
+    bool finite = true;
+    for_each_group_with_blocks([&](const auto& entries, const auto& blocks) {
+      for (std::size_t i = 0; i < entries.size(); ++i) {
+        constexpr int m = std::remove_cvref_t<decltype(blocks[i].j)>::RowsAtCompileTime;
+        const int o = entries[i].offset;
+        z.template segment<m>(o) = blocks[i].lu.solve(r.template segment<m>(o));
+        finite = finite && detail::all_finite_fast(z.template segment<m>(o));
+      }
+    });
+    if (!finite) [[unlikely]] {
+      throw NonFiniteError(
+          "tumble::Scene::precondition_solve: the block preconditioner I - gamma J_D is "
+          "singular or the residual is not finite");
     }
   }
 
@@ -817,6 +894,37 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
     detail::add_block(jac, offset + n, offset_b, rows.rightCols(N - 2 * na));
   }
 
+  /// One block of the preconditioner: J_kk and the LU factors of I - gamma J_kk.
+  template <class Body> struct DiagonalBlock {
+    static constexpr int m = 2 * Body::nq;
+    Matrix<double, m, m> j = Matrix<double, m, m>::Zero();
+    Eigen::PartialPivLU<Matrix<double, m, m>> lu;
+  };
+
+  /// A Jacobian "matrix" that keeps the diagonal blocks only (jacobian() writes through
+  /// detail::add_block): the block of body k receives what falls in its rows and its columns.
+  struct DiagonalSink {
+    Scene* scene;
+    template <class Derived>
+    void add_block(Eigen::Index r0, Eigen::Index c0, const Eigen::MatrixBase<Derived>& b) const {
+      const int k = scene->owner_[r0];
+      if (scene->owner_[c0] != k) {
+        return;
+      }
+      const int o = scene->block_start_[k], m = scene->block_size_[k];
+      Eigen::Map<Eigen::MatrixXd> jk(scene->block_data_[k], m, m);
+      jk.block(r0 - o, c0 - o, b.rows(), b.cols()) += b;
+    }
+  };
+
+  template <class F> void for_each_group_with_blocks(F&& f) {
+    for_each_group_with_blocks_impl(f, std::index_sequence_for<B...>{});
+  }
+  template <class F, std::size_t... I>
+  void for_each_group_with_blocks_impl(F& f, std::index_sequence<I...>) {
+    (f(std::get<I>(groups_), std::get<I>(blocks_)), ...);
+  }
+
   /// For each one-body load type, the loads on each body (a compressed index: the loads of body
   /// k are items[start[k] .. start[k + 1])), so that a body's block visits only its own loads.
   struct LoadIndex {
@@ -925,6 +1033,12 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
   std::array<LoadIndex, sizeof...(L)> by_body_;
   std::vector<char> coupled_;               ///< per body: 1 when a coupling acts on it
   std::vector<Matrix<double, 7, 6>> gain_;  ///< per body: B = d qddot / dW (jacobian())
+  std::tuple<std::vector<DiagonalBlock<B>>...> blocks_;  ///< the block preconditioner
+  std::vector<int> owner_;                               ///< per state entry: its body
+  std::vector<double*> block_data_;                      ///< per body: its J_kk
+  std::vector<int> block_start_;
+  std::vector<int> block_size_;
+  bool preconditioner_ready_ = false;
   State y0_;
   int size_ = 0;
   bool prepared_ = false;
