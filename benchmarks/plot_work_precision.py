@@ -141,7 +141,7 @@ def plot_scaling(results):
     labels = {"bdf-dense": ("dense LU, exact Jacobian", "tab:red", "s"),
               "bdf-band": ("band LU, exact Jacobian", "tab:green", "o"),
               "bdf-band-dq": ("band LU, difference quotients", "tab:olive", "x"),
-              "bdf-gmres": ("GMRES (matrix-free)", "tab:purple", "^")}
+              "bdf-gmres": ("GMRES, block preconditioner", "tab:purple", "^")}
     for key, (label, color, marker) in labels.items():
         if key in series:
             pts = sorted(series[key])

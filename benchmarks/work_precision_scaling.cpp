@@ -10,7 +10,8 @@
 //    to i - 1 and i + 1, so with 14 state entries per body the Jacobian has half-bandwidths
 //    2 * 14 - 1 = 27 whatever N is, which SceneIntegrator takes from Scene::half_bandwidth: 55
 //    right-hand sides per Jacobian and an O(N) factorization), and matrix-free GMRES
-//    (difference-quotient J v products, no preconditioner). Dense and band use the scene's exact
+//    (difference-quotient J v products, with the scene's block-Jacobi preconditioner, one LU of
+//    I - gamma J_kk per body). Dense and band use the scene's exact
 //    Jacobian (Scene::jacobian, automatic differentiation, O(N)); the band LU is also run with
 //    CVODE's banded difference quotients ("bdf-band-dq", use_system_jacobian = false), the cost
 //    before the scene had a Jacobian.
