@@ -5,8 +5,8 @@
 //  - the cost of one right-hand side (Scene::rhs) per body, for N = 1 ... 10,000: the scene loops
 //    over bodies and loads with the types known at compile time, so this should be flat in N;
 //  - the cost of one BDF step (construction of the integrator and the first `bdf_steps` steps,
-//    divided by the steps) with CVODE's dense LU (difference-quotient Jacobian: N right-hand
-//    sides of N bodies, then an O(N^3) factorization), its band LU (the chain couples body i only
+//    divided by the steps) with CVODE's dense LU (an O(N^3) factorization; by difference
+//    quotients its Jacobian would cost N right-hand sides of N bodies), its band LU (the chain couples body i only
 //    to i - 1 and i + 1, so with 14 state entries per body the Jacobian has half-bandwidths
 //    2 * 14 - 1 = 27 whatever N is, which SceneIntegrator takes from Scene::half_bandwidth: 55
 //    right-hand sides per Jacobian and an O(N) factorization), and matrix-free GMRES
