@@ -30,13 +30,6 @@ template <int N, class Derived>
   return j;
 }
 
-/// x as jets with zero derivatives (constants).
-template <int N, class Derived>
-[[nodiscard]] Eigen::Matrix<Jet<N>, Derived::RowsAtCompileTime, Derived::ColsAtCompileTime>
-constant(const Eigen::MatrixBase<Derived>& x) {
-  return x.template cast<Jet<N>>();
-}
-
 /// The derivatives of a vector of jets, one row per entry: d v / d (directions).
 template <int N, int R>
 [[nodiscard]] Eigen::Matrix<double, R, N> derivatives(const Eigen::Matrix<Jet<N>, R, 1>& v) {

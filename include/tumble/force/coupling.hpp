@@ -7,7 +7,6 @@
 // conserved, and the total angular momentum too when the forces are central).
 
 #include <concepts>
-#include <type_traits>
 #include <utility>
 
 #include "tumble/force/concept.hpp"
@@ -66,6 +65,15 @@ class SpringDamperBetween {
 
 static_assert(CouplingElement<SpringDamperBetween>);
 
+namespace detail {
+/// F called as f(t, ka, kb, wa, wb) in scalar type S.
+template <class F, class S>
+concept CouplingCallable = requires(const F& f, const S& t, const KinematicsView<S>& ka,
+                                    const KinematicsView<S>& kb, Wrench<S>& wa, Wrench<S>& wb) {
+  f(t, ka, kb, wa, wb);
+};
+}  // namespace detail
+
 /// A user callable between two bodies: f(t, ka, kb, wa, wb) adds its loads to wa and wb.
 /// \warning tumble cannot check that the loads are equal and opposite: momentum conservation is
 ///          the callable's responsibility.
@@ -74,10 +82,9 @@ template <class F> class UserCoupling {
   explicit UserCoupling(F f) : f_(std::move(f)) {}
   /// Available for the scalar types the callable accepts (see UserForce::apply).
   template <class S>
-  requires std::is_invocable_v < const F&, const S&, const KinematicsView<S>
-  &, const KinematicsView<S>&, Wrench<S>&,
-      Wrench<S>& > void apply(const S& t, const KinematicsView<S>& a, const KinematicsView<S>& b,
-                              Wrench<S>& wa, Wrench<S>& wb) const {
+  requires detail::CouplingCallable<F, S>
+  void apply(const S& t, const KinematicsView<S>& a, const KinematicsView<S>& b, Wrench<S>& wa,
+             Wrench<S>& wb) const {
     f_(t, a, b, wa, wb);
   }
 

@@ -4,6 +4,7 @@
 // Wrench::add_force to place a force at a body point). `NeedsRotation = false` declares that the
 // callable never reads kinematics.rotation, so R is not computed for it.
 
+#include <concepts>
 #include <type_traits>
 #include <utility>
 
@@ -12,6 +13,14 @@
 #include "tumble/force/concept.hpp"
 
 namespace tumble {
+
+namespace detail {
+/// F called as f(t, kinematics) in scalar type S returns a Wrench<S>.
+template <class F, class S, ReferencePoint Ref>
+concept ForceCallable = requires(const F& f, const S& t, const BodyKinematics<S, Ref>& k) {
+  { f(t, k) } -> std::convertible_to<Wrench<S>>;
+};
+}  // namespace detail
 
 template <class F, bool NeedsRotation = true> class UserForce {
  public:
@@ -23,10 +32,8 @@ template <class F, bool NeedsRotation = true> class UserForce {
   /// Available for the scalar types the callable accepts: a callable written for any scalar (a
   /// template) lets a scene differentiate it exactly (Scene::jacobian).
   template <class S, ReferencePoint Ref>
-  requires std::is_invocable_r_v < Wrench<S>,
-  const F&, const S&,
-      const BodyKinematics<S, Ref>& >
-          void apply(const S& t, const BodyKinematics<S, Ref>& k, Wrench<S>& w) const {
+  requires detail::ForceCallable<F, S, Ref>
+  void apply(const S& t, const BodyKinematics<S, Ref>& k, Wrench<S>& w) const {
     const Wrench<S> u = f_(t, k);
     if (!detail::isfinite(u.force.sum() + u.moment.sum())) [[unlikely]] {
       throw NonFiniteError("tumble::UserForce: the user force returned a non-finite wrench");
