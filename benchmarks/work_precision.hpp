@@ -191,6 +191,17 @@ struct Timing {
 /// the times on Timing's clock for the median).
 void record_time(Run& run, std::vector<double>& times, const Stopwatch& watch,
                  const Timing& timing);
+/// Copies the counters of a CVODE run (tumble::CvodeStatistics, or SceneStatistics derived from
+/// it) into `run`.
+template <class Statistics> void record_statistics(Run& run, const Statistics& st) {
+  run.steps = st.steps;
+  run.rhs_evals = st.rhs_evals;
+  run.linear_rhs_evals = st.linear_rhs_evals;
+  run.jacobian_evals = st.jacobian_evals;
+  run.error_test_failures = st.error_test_failures;
+  run.convergence_failures = st.nonlinear_convergence_failures;
+  run.reinits = st.reinits;
+}
 /// Finishes the timing record (median, reps).
 void finish_timing(Run& run, std::vector<double>& times);
 /// Whether another repetition should be run after `done` of them.

@@ -124,13 +124,7 @@ Run run_pinocchio(const Problem& p, const CvodeSetting& c, const Timing& timing)
       });
       record_time(run, times, watch, timing);
       const CvodeStatistics st = cvode.statistics();
-      run.steps = st.steps;
-      run.rhs_evals = st.rhs_evals;
-      run.linear_rhs_evals = st.linear_rhs_evals;
-      run.jacobian_evals = st.jacobian_evals;
-      run.error_test_failures = st.error_test_failures;
-      run.convergence_failures = st.nonlinear_convergence_failures;
-      run.reinits = st.reinits;
+      record_statistics(run, st);
       run.constraint_drift = std::abs(cvode.state().segment<4>(3).norm() - 1.0);
     } while (another_rep(timing, times));
   } catch (const std::exception& e) {

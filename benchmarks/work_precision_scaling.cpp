@@ -5,16 +5,16 @@
 //  - the cost of one right-hand side (Scene::rhs) per body, for N = 1 ... 10,000: the scene loops
 //    over bodies and loads with the types known at compile time, so this should be flat in N;
 //  - the cost of one BDF step (construction of the integrator and the first `bdf_steps` steps,
-//    divided by the steps) with CVODE's dense LU (an O(N^3) factorization; by difference
-//    quotients its Jacobian would cost N right-hand sides of N bodies), its band LU (the chain couples body i only
-//    to i - 1 and i + 1, so with 14 state entries per body the Jacobian has half-bandwidths
-//    2 * 14 - 1 = 27 whatever N is, which SceneIntegrator takes from Scene::half_bandwidth: 55
-//    right-hand sides per Jacobian and an O(N) factorization), and matrix-free GMRES
-//    (difference-quotient J v products, with the scene's block-Jacobi preconditioner, one LU of
-//    I - gamma J_kk per body). Dense and band use the scene's exact
-//    Jacobian (Scene::jacobian, automatic differentiation, O(N)); the band LU is also run with
-//    CVODE's banded difference quotients ("bdf-band-dq", use_system_jacobian = false), the cost
-//    before the scene had a Jacobian.
+//    divided by the steps) with CVODE's dense LU (an O(N^3) factorization), its band LU (the
+//    chain couples body i only to i - 1 and i + 1, so with 14 state entries per body the Jacobian
+//    has half-bandwidths 2 * 14 - 1 = 27 whatever N is, which SceneIntegrator takes from
+//    Scene::half_bandwidth: an O(N) factorization), and matrix-free GMRES (difference-quotient
+//    J v products, with the scene's block-Jacobi preconditioner, one LU of I - gamma J_kk per
+//    body). Dense and band use the scene's exact Jacobian (Scene::jacobian, automatic
+//    differentiation, O(N)); the band LU is also run with CVODE's banded difference quotients
+//    ("bdf-band-dq", use_system_jacobian = false: 55 right-hand sides per Jacobian), the cost
+//    before the scene had a Jacobian. By difference quotients the dense Jacobian would cost N
+//    right-hand sides of N bodies.
 
 #include <algorithm>
 #include <cmath>

@@ -64,13 +64,7 @@ Run run_scene(const Problem& p, const CvodeSetting& c, const Timing& timing, Bui
       });
       record_time(run, times, watch, timing);
       const SceneStatistics st = integrator.statistics();
-      run.steps = st.steps;
-      run.rhs_evals = st.rhs_evals;
-      run.linear_rhs_evals = st.linear_rhs_evals;
-      run.jacobian_evals = st.jacobian_evals;
-      run.error_test_failures = st.error_test_failures;
-      run.convergence_failures = st.nonlinear_convergence_failures;
-      run.reinits = st.reinits;
+      record_statistics(run, st);
       run.chart_switches = st.chart_switches;
       if constexpr (Body::Param::has_constraint) {
         run.constraint_drift = scene.constraint_drift(integrator.state());
