@@ -7,8 +7,9 @@
 //   body/          MassProperties, RigidBody<P, ReferencePoint, Scalar>, Wrench, kinematics
 //   force/         UniformGravity, PointForce, BodyMoment, SpringDamper, SpringDamperBetween,
 //                  UserForce, UserCoupling; total_wrench, generalized_force, accelerations
-//   scene/         Scene<Bodies<...>, Loads<...>>, charts of three-parameter sets; the scene's
-//                  Jacobian (core/jet.hpp: Jet<N> automatic differentiation; BandMatrixMap)
+//   scene/         Scene<Bodies<...>, Loads<...>> (the model), SceneState (y and chart bases),
+//                  SceneWorkspace; rhs, jacobian (Jet<N> automatic differentiation; dense or
+//                  BandMatrixMap), BlockPreconditioner, chart switching, projection, observables
 
 #include "tumble/body/kinematics.hpp"
 #include "tumble/body/mass_properties.hpp"
@@ -33,4 +34,12 @@
 #include "tumble/orientation/rodrigues.hpp"
 #include "tumble/orientation/rotation_vector.hpp"
 #include "tumble/scene/chart.hpp"
+#include "tumble/scene/charts.hpp"
+#include "tumble/scene/jacobian.hpp"
+#include "tumble/scene/observables.hpp"
+#include "tumble/scene/preconditioner.hpp"
+#include "tumble/scene/projection.hpp"
+#include "tumble/scene/rhs.hpp"
 #include "tumble/scene/scene.hpp"
+#include "tumble/scene/state.hpp"
+#include "tumble/scene/workspace.hpp"

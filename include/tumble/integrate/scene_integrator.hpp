@@ -1,28 +1,41 @@
 #pragma once
 // SceneIntegrator: a Scene (scene/scene.hpp) integrated in time by CVODE (integrate/cvode.hpp).
 //
-// It adapts the scene to CVODE's system interface and sets up what the scene's coordinates need:
+// The scene is the model and is only read; everything that changes during the run belongs to the
+// integrator: the state (the continuous vector in CVODE's memory and the chart bases beside it),
+// the evaluation workspace, the block preconditioner and the counters. It sets up what the
+// scene's coordinates need:
 // - Euler parameters: with BDF, CVODE's projection onto |p| = 1, p.pdot = 0 after every step
-//   (CVodeSetProjFn; CVODE supports projection only with BDF); with Adams, the scene's
-//   Baumgarte-stabilized constraint acceleration instead.
+//   (CVodeSetProjFn; CVODE supports projection only with BDF); with Adams, the Baumgarte-
+//   stabilized constraint acceleration instead (scene/rhs.hpp).
 // - Three-parameter sets: one root function per body watches the distance to the chart's
 //   singularity; at a root the chart is re-centered (MRP: shadow set) and CVODE restarts.
 // - User events: the scene's root functions and actions, with a restart when the state changes.
 // - BDF's Newton iteration gets the exact Jacobian df/dy (dense or band) by automatic
-//   differentiation (Scene::jacobian) when every load can be differentiated; otherwise, or with
-//   CvodeOptions::use_system_jacobian = false, CVODE forms it by difference quotients. With
-//   GMRES the same blocks give a block-Jacobi preconditioner, one LU of I - gamma J_kk per body
-//   (CvodeOptions::preconditioning: left by default, or right, or none).
+//   differentiation (scene/jacobian.hpp) when every load can be differentiated; otherwise, or
+//   with CvodeOptions::use_system_jacobian = false, CVODE forms it by difference quotients. With
+//   GMRES the same blocks give a block-Jacobi preconditioner (scene/preconditioner.hpp).
 // A NonFiniteError met in the right-hand side becomes a recoverable error: CVODE retries with a
 // smaller step, and reports an IntegrationError if it cannot recover.
 
+#include <optional>
 #include <span>
+#include <stdexcept>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include "tumble/core/errors.hpp"
 #include "tumble/integrate/cvode.hpp"
 #include "tumble/integrate/errors.hpp"
+#include "tumble/scene/charts.hpp"
+#include "tumble/scene/jacobian.hpp"
+#include "tumble/scene/preconditioner.hpp"
+#include "tumble/scene/projection.hpp"
+#include "tumble/scene/rhs.hpp"
 #include "tumble/scene/scene.hpp"
+#include "tumble/scene/state.hpp"
+#include "tumble/scene/workspace.hpp"
 
 namespace tumble {
 
@@ -32,7 +45,7 @@ struct SceneIntegratorOptions {
   /// own half-bandwidth is used (Scene::half_bandwidth).
   CvodeOptions cvode{};
   /// With BDF: project Euler parameters onto their constraint after each step. With Adams the
-  /// scene's Baumgarte stabilization is used (CVODE cannot project with Adams).
+  /// Baumgarte stabilization is used (CVODE cannot project with Adams).
   bool project_quaternions = true;
 };
 
@@ -43,49 +56,96 @@ struct SceneStatistics : CvodeStatistics {
 
 namespace detail {
 
-/// The scene as a CVODE system (see CvodeSystem and its optional members).
+/// A scene and the data of one run of it, as a CVODE system (see CvodeSystem and its optional
+/// members). Lives in CVODE's core on the heap, so its address is stable.
 template <class SceneT> class SceneSystem {
+  struct NoPreconditioner {};
+  using Preconditioner =
+      std::conditional_t<SceneT::differentiable, BlockPreconditioner<SceneT>, NoPreconditioner>;
+
  public:
-  explicit SceneSystem(SceneT& scene) : scene_(&scene) {}
+  SceneSystem(const SceneT& scene, ChartBases base, bool stabilize, bool with_preconditioner)
+      : scene_(&scene), ws_(scene), base_(std::move(base)),
+        switches_(static_cast<std::size_t>(scene.body_count()), 0) {
+    ws_.stabilize_constraints = stabilize;
+    if constexpr (SceneT::differentiable) {
+      if (with_preconditioner) {
+        preconditioner_.emplace(scene);
+      }
+    }
+    if (!scene.events().empty()) {  // scratch for event actions, sized once
+      event_state_.y.resize(scene.size());
+      event_state_.base = base_;
+    }
+  }
 
   [[nodiscard]] int size() const { return scene_->size(); }
 
   void rhs(double t, ConstVectorMap y, VectorMap ydot) {
     try {
-      scene_->rhs(t, y, ydot);
+      tumble::rhs(*scene_, ws_, t, y, bases(), ydot);
     } catch (const NonFiniteError& e) {
       throw RecoverableError(e.what());
     }
   }
 
   [[nodiscard]] int root_count() const { return scene_->root_count(); }
-  [[nodiscard]] const std::vector<int>& root_directions() const {
-    return scene_->root_directions();
+  [[nodiscard]] std::vector<int> root_directions() const { return scene_->root_directions(); }
+  void roots(double t, ConstVectorMap y, VectorMap g) {
+    chart_roots(*scene_, y, g);
+    const auto& events = scene_->events();
+    if (!events.empty()) {
+      const SceneStateView s(y.data(), y.size(), bases());
+      int i = static_cast<int>(scene_->chart_bodies().size());
+      for (const Event& ev : events) {
+        g[i++] = ev.function(t, s);
+      }
+    }
   }
-  void roots(double t, ConstVectorMap y, VectorMap g) { scene_->roots(t, y, g); }
   bool on_root(double t, VectorMap y, std::span<const int> which) {
-    return scene_->on_root(t, y, which.data());
+    bool changed = leave_charts(*scene_, y, std::span<Matrix3<double>>(base_), which.data(),
+                                [this](int id) { ++switches_[id]; }) > 0;
+    const auto& events = scene_->events();
+    const std::size_t first = scene_->chart_bodies().size();
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      if (which[first + i] != 0 && events[i].action) {
+        event_state_.y = y;
+        event_state_.base = base_;
+        events[i].action(t, event_state_);
+        if (event_state_.y.size() != y.size() || event_state_.base.size() != base_.size()) {
+          throw std::invalid_argument("tumble::Event: an action changed the size of the state");
+        }
+        y = event_state_.y;
+        base_ = event_state_.base;
+        changed = true;
+      }
+    }
+    if (changed) {
+      recenter(y);
+    }
+    return changed;
   }
 
-  /// J = df/dy by automatic differentiation (Scene::jacobian), dense or band; only when every
-  /// load of the scene can be differentiated (Scene::differentiable), otherwise CVODE forms J by
-  /// difference quotients.
+  /// J = df/dy by automatic differentiation, dense or band; only when every load of the scene can
+  /// be differentiated, otherwise CVODE forms J by difference quotients.
   template <class Jac>
   requires SceneT::differentiable void jacobian(double t, ConstVectorMap y, ConstVectorMap /*fy*/,
                                                 Jac jac) {
     try {
-      scene_->jacobian(t, y, jac);
+      tumble::jacobian(*scene_, ws_, t, y, bases(), jac);
     } catch (const NonFiniteError& e) {
       throw RecoverableError(e.what());
     }
   }
 
-  /// Block-Jacobi preconditioner for GMRES (Scene::precondition_setup/solve): one LU of
-  /// I - gamma J_kk per body. Only for differentiable scenes (it needs the exact blocks).
+  /// The block-Jacobi preconditioner for GMRES: one LU of I - gamma J_kk per body.
   bool precondition_setup(double t, ConstVectorMap y, ConstVectorMap /*fy*/, bool jacobian_ok,
                           double gamma) requires SceneT::differentiable {
     try {
-      return scene_->precondition_setup(t, y, jacobian_ok, gamma);
+      if (!preconditioner_) [[unlikely]] {
+        preconditioner_.emplace(*scene_);
+      }
+      return preconditioner_->setup(*scene_, ws_, t, y, bases(), jacobian_ok, gamma);
     } catch (const NonFiniteError& e) {
       throw RecoverableError(e.what());
     }
@@ -94,18 +154,41 @@ template <class SceneT> class SceneSystem {
                           ConstVectorMap r, VectorMap z, double /*gamma*/, double /*delta*/,
                           int /*lr*/) requires SceneT::differentiable {
     try {
-      scene_->precondition_solve(r, z);
+      preconditioner_->solve(r, z);
     } catch (const NonFiniteError& e) {
       throw RecoverableError(e.what());
     }
   }
 
   void project(double /*t*/, ConstVectorMap y, VectorMap corr, double /*eps*/, VectorMap err) {
-    scene_->project(y, corr, err);
+    tumble::project(*scene_, y, corr, err);
+  }
+
+  /// Re-centers the charts of y (and base_) that are in their switch zone; true if any changed.
+  template <class Y> bool recenter(Y&& y) {
+    return recenter_charts(*scene_, y, std::span<Matrix3<double>>(base_),
+                           [this](int id) { ++switches_[id]; }) > 0;
+  }
+
+  [[nodiscard]] const SceneT& scene() const { return *scene_; }
+  [[nodiscard]] std::span<const Matrix3<double>> bases() const { return base_; }
+  void set_bases(const ChartBases& base) { base_ = base; }
+  [[nodiscard]] long switches(int id) const { return switches_[static_cast<std::size_t>(id)]; }
+  [[nodiscard]] long switches() const {
+    long n = 0;
+    for (const long s : switches_) {
+      n += s;
+    }
+    return n;
   }
 
  private:
-  SceneT* scene_;
+  const SceneT* scene_;
+  SceneWorkspace<SceneT> ws_;
+  std::optional<Preconditioner> preconditioner_;
+  ChartBases base_;            ///< the discrete part of the state
+  std::vector<long> switches_;  ///< per body
+  SceneState event_state_;     ///< what event actions see and change
 };
 
 }  // namespace detail
@@ -113,86 +196,131 @@ template <class SceneT> class SceneSystem {
 template <class SceneT> class SceneIntegrator {
  public:
   /// Integrate `scene` from t0 starting at the scene's initial state (Scene::add's InitialState).
-  /// The scene must outlive the integrator and must not gain bodies or loads while it is used.
-  SceneIntegrator(SceneT& scene, double t0, SceneIntegratorOptions options = {})
+  /// The scene must outlive the integrator; the integrator only reads it.
+  SceneIntegrator(const SceneT& scene, double t0, SceneIntegratorOptions options = {})
       : SceneIntegrator(scene, t0, scene.initial_state(), std::move(options)) {}
 
-  /// Integrate `scene` from (t0, y0).
-  SceneIntegrator(SceneT& scene, double t0, const Eigen::Ref<const Eigen::VectorXd>& y0,
+  /// Integrate `scene` from (t0, s0): a state of this scene (its initial state, or one saved
+  /// from an integrator of it or of a copy of it).
+  SceneIntegrator(const SceneT& scene, double t0, const SceneState& s0,
                   SceneIntegratorOptions options = {})
-      : scene_(&scene),
-        cvode_(make(scene, t0, y0, options)),
-        switches_at_start_(scene.chart_switches()) {}
+      : cvode_(make(scene, t0, s0, options)) {
+    sync();
+  }
 
-  /// Integrate to t_out and return the state there.
-  ConstVectorMap advance(double t_out) { return cvode_.advance(t_out); }
+  /// A scene must outlive its integrator: a temporary would not.
+  SceneIntegrator(SceneT&&, double, SceneIntegratorOptions = {}) = delete;
+  SceneIntegrator(SceneT&&, double, const SceneState&, SceneIntegratorOptions = {}) = delete;
+
+  /// Integrates to t_out and returns the state there (valid until the next call; copy it to
+  /// keep it: `SceneState saved = integrator.advance(t);`).
+  const SceneState& advance(double t_out) {
+    cvode_.advance(t_out);
+    return sync();
+  }
   /// One internal step; returns the time reached.
-  double step() { return cvode_.step(); }
-  /// observer(t, y) at each output time.
+  double step() {
+    const double t = cvode_.step();
+    sync();
+    return t;
+  }
+  /// observer(t, state) at each output time (increasing, validated before integrating).
   template <class Times, class Observer> void integrate(const Times& times, Observer&& observer) {
-    cvode_.integrate(times, std::forward<Observer>(observer));
+    cvode_.integrate(times, [&](double t, ConstVectorMap) { observer(t, std::as_const(sync())); });
   }
   template <class Observer>
   void integrate(std::initializer_list<double> times, Observer&& observer) {
-    cvode_.integrate(times, std::forward<Observer>(observer));
+    cvode_.integrate(times, [&](double t, ConstVectorMap) { observer(t, std::as_const(sync())); });
   }
 
-  [[nodiscard]] ConstVectorMap state() const { return cvode_.state(); }
+  /// The current state: the continuous vector and the chart bases.
+  [[nodiscard]] const SceneState& state() const { return state_; }
   [[nodiscard]] double time() const { return cvode_.time(); }
 
-  /// Restart from a state the user changed (charts near their singularity are re-centered
-  /// first).
-  void reset(double t, const Eigen::Ref<const Eigen::VectorXd>& y) {
-    Eigen::VectorXd y1 = y;
-    scene_->recenter_charts(y1);
-    cvode_.reset(t, y1);
+  /// Restarts from the state s at time t: a saved state of this scene (it restarts at the
+  /// attitude it was saved at, whatever charts were switched since), or one the user changed
+  /// (charts in their switch zone are re-centered first).
+  void reset(double t, const SceneState& s) {
+    check_state(scene(), s, "reset");
+    SceneSystem& sys = cvode_.system();
+    const ChartBases old = state_.base;  // the bases in force, if the restart fails
+    try {
+      Eigen::VectorXd y = s.y;
+      sys.set_bases(s.base);
+      sys.recenter(y);
+      cvode_.reset(t, y);
+    } catch (...) {
+      sys.set_bases(old);
+      throw;
+    }
+    sync();
   }
 
   [[nodiscard]] SceneStatistics statistics() const {
     SceneStatistics s;
     static_cast<CvodeStatistics&>(s) = cvode_.statistics();
-    s.chart_switches = scene_->chart_switches() - switches_at_start_;
+    s.chart_switches = cvode_.system().switches();
     return s;
   }
+  /// Chart switches of one body since construction.
+  template <class Body> [[nodiscard]] long chart_switches(BodyId<Body> b) const {
+    return cvode_.system().switches(scene().entry(b).id);
+  }
 
-  [[nodiscard]] SceneT& scene() { return *scene_; }
-  [[nodiscard]] const SceneT& scene() const { return *scene_; }
+  [[nodiscard]] const SceneT& scene() const { return cvode_.system().scene(); }
   [[nodiscard]] Cvode<detail::SceneSystem<SceneT>>& cvode() { return cvode_; }
 
  private:
-  static Cvode<detail::SceneSystem<SceneT>> make(SceneT& scene, double t0,
-                                                 const Eigen::Ref<const Eigen::VectorXd>& y0,
-                                                 SceneIntegratorOptions options) {
-    scene.prepare();
-    if (y0.size() != scene.size()) {
-      throw std::invalid_argument("tumble::SceneIntegrator: the state has size " +
-                                  std::to_string(y0.size()) + " but the scene has size " +
-                                  std::to_string(scene.size()));
+  using SceneSystem = detail::SceneSystem<SceneT>;
+
+  static void check_state(const SceneT& scene, const SceneState& s, const char* who) {
+    if (s.y.size() != scene.size() || static_cast<int>(s.base.size()) != scene.body_count()) {
+      throw std::invalid_argument(std::string("tumble::SceneIntegrator::") + who +
+                                  ": the state has " + std::to_string(s.y.size()) +
+                                  " entries and " + std::to_string(s.base.size()) +
+                                  " chart bases, but the scene has size " +
+                                  std::to_string(scene.size()) + " and " +
+                                  std::to_string(scene.body_count()) + " bodies");
     }
-    Eigen::VectorXd y = y0;
-    scene.recenter_charts(y);
+    for (const auto& b : s.base) {
+      if (!b.allFinite() ||
+          (b.transpose() * b - Matrix3<double>::Identity()).cwiseAbs().maxCoeff() > 1e-9 ||
+          b.determinant() < 0) {
+        throw std::invalid_argument(std::string("tumble::SceneIntegrator::") + who +
+                                    ": a chart base of the state is not a proper rotation");
+      }
+    }
+  }
+
+  static Cvode<SceneSystem> make(const SceneT& scene, double t0, const SceneState& s0,
+                                 SceneIntegratorOptions options) {
+    check_state(scene, s0, "SceneIntegrator");
     const bool bdf = options.cvode.method == CvodeMethod::bdf;
-    const bool project = bdf && options.project_quaternions && SceneT::has_constraints();
+    const bool project = bdf && options.project_quaternions && SceneT::has_constraints;
     options.cvode.projection = project;
     if (options.cvode.linear_solver == CvodeLinearSolver::band &&
         options.cvode.upper_bandwidth < 0 && options.cvode.lower_bandwidth < 0) {
       options.cvode.upper_bandwidth = options.cvode.lower_bandwidth = scene.half_bandwidth();
     }
-    scene.set_constraint_stabilization(!project);
-    if constexpr (SceneT::differentiable) {
-      if (options.cvode.method == CvodeMethod::bdf &&
-          options.cvode.linear_solver == CvodeLinearSolver::gmres &&
-          options.cvode.preconditioning != CvodePreconditioning::none) {
-        scene.prepare_preconditioner();
-      }
-    }
-    return Cvode<detail::SceneSystem<SceneT>>(detail::SceneSystem<SceneT>(scene), t0, y,
-                                              std::move(options.cvode));
+    const bool preconditioned = bdf &&
+                                options.cvode.linear_solver == CvodeLinearSolver::gmres &&
+                                options.cvode.preconditioning != CvodePreconditioning::none;
+    SceneSystem system(scene, s0.base, !project, preconditioned);
+    Eigen::VectorXd y = s0.y;
+    system.recenter(y);
+    return Cvode<SceneSystem>(std::move(system), t0, y, std::move(options.cvode));
   }
 
-  SceneT* scene_;
-  Cvode<detail::SceneSystem<SceneT>> cvode_;
-  long switches_at_start_;
+  /// Copies the current state (CVODE's vector and the bases) into state_; no allocation.
+  const SceneState& sync() {
+    state_.y = cvode_.state();
+    const auto b = cvode_.system().bases();
+    state_.base.assign(b.begin(), b.end());
+    return state_;
+  }
+
+  Cvode<SceneSystem> cvode_;
+  SceneState state_;
 };
 
 }  // namespace tumble

@@ -1,0 +1,105 @@
+#pragma once
+// Chart switching: how a scene's three-parameter bodies leave a chart before its singularity
+// (the mechanism and its thresholds: chart.hpp). Each such body has one root function, the
+// distance to the singularity minus the switch distance; at a root, or whenever a state starts
+// inside the switch zone, the chart is re-centered:
+//   R0' = R0 R(theta) R(theta_c)^T,  theta' = theta_c,  thetadot' = P::thetadot(theta_c, omega),
+// or, for MRP, switched to the shadow set (same base). The attitude R0 R(theta) and omega are
+// unchanged. The chart base is part of the state (state.hpp), so these functions change both the
+// continuous vector y and the bases, and nothing in the scene.
+
+#include <span>
+#include <type_traits>
+
+#include "tumble/core/types.hpp"
+#include "tumble/orientation/euler_parameters.hpp"
+#include "tumble/scene/chart.hpp"
+#include "tumble/scene/scene.hpp"
+#include "tumble/scene/state.hpp"
+
+namespace tumble {
+
+/// g[i] = distance to the singularity - switch distance (rad) of the i-th body with a singular
+/// chart (Scene::chart_bodies() order). CVODE watches these for falling zero crossings.
+template <class SceneT, class Y, class G> void chart_roots(const SceneT& scene, const Y& y, G&& g) {
+  int i = 0;
+  scene.for_each_entry([&](const auto& e) {
+    using Body = std::remove_cvref_t<decltype(e.body)>;
+    using P = typename Body::Param;
+    if constexpr (Chart<P>::has_singularity) {
+      const typename Body::Theta th = y.template segment<Body::n_theta>(e.offset + 3);
+      g[i++] = P::singularity_distance(th) - e.switch_distance;
+    }
+  });
+}
+
+/// Leaves the chart of body e in the state (y, its base): re-centers it, or takes the MRP
+/// shadow set.
+template <class Entry, class Y> void leave_chart(const Entry& e, Y& y, Matrix3<double>& base) {
+  using Body = std::remove_cvref_t<decltype(e.body)>;
+  using P = typename Body::Param;
+  static_assert(Chart<P>::has_singularity, "only three-parameter sets leave their chart");
+  constexpr int nq = Body::nq;
+  const typename Body::Theta th = y.template segment<Body::n_theta>(e.offset + 3);
+  const Vector3<double> w = P::G(th) * y.template segment<Body::n_theta>(e.offset + nq + 3);
+  typename Body::Theta th_new;
+  if constexpr (Chart<P>::uses_shadow_set) {
+    th_new = P::shadow(th);
+  } else {
+    const typename Body::Theta c = Chart<P>::center();
+    const Matrix3<double> b = base * P::rotation(th) * P::rotation(c).transpose();
+    // Re-orthonormalized through the quaternion, so rounding does not accumulate over switches.
+    base = EulerParameters::rotation(EulerParameters::from_rotation(b));
+    th_new = c;
+  }
+  y.template segment<Body::n_theta>(e.offset + 3) = th_new;
+  y.template segment<Body::n_theta>(e.offset + nq + 3) = P::thetadot(th_new, w);
+}
+
+/// Leaves the chart of every body whose root was found (which[i] != 0 for the i-th chart body,
+/// as in chart_roots). on_switch(id) is called for each. Returns the number of switches.
+template <class SceneT, class Y, class OnSwitch>
+int leave_charts(const SceneT& scene, Y&& y, std::span<Matrix3<double>> base, const int* which,
+                 OnSwitch&& on_switch) {
+  int i = 0, n = 0;
+  scene.for_each_entry([&](const auto& e) {
+    using Body = std::remove_cvref_t<decltype(e.body)>;
+    if constexpr (Chart<typename Body::Param>::has_singularity) {
+      if (which[i++] != 0) {
+        leave_chart(e, y, base[e.id]);
+        on_switch(e.id);
+        ++n;
+      }
+    }
+  });
+  return n;
+}
+
+/// Re-centers every chart that is closer to its singularity than its switch distance (at the
+/// start of a run and after the user changed the state). on_switch(id) is called for each.
+/// Returns the number of switches.
+template <class SceneT, class Y, class OnSwitch>
+int recenter_charts(const SceneT& scene, Y&& y, std::span<Matrix3<double>> base,
+                    OnSwitch&& on_switch) {
+  int n = 0;
+  scene.for_each_entry([&](const auto& e) {
+    using Body = std::remove_cvref_t<decltype(e.body)>;
+    using P = typename Body::Param;
+    if constexpr (Chart<P>::has_singularity) {
+      const typename Body::Theta th = y.template segment<Body::n_theta>(e.offset + 3);
+      if (P::singularity_distance(th) < e.switch_distance) {
+        leave_chart(e, y, base[e.id]);
+        on_switch(e.id);
+        ++n;
+      }
+    }
+  });
+  return n;
+}
+
+/// The same on an owned state, uncounted.
+template <class SceneT> int recenter_charts(const SceneT& scene, SceneState& s) {
+  return recenter_charts(scene, s.y, std::span<Matrix3<double>>(s.base), [](int) {});
+}
+
+}  // namespace tumble

@@ -1,0 +1,197 @@
+#pragma once
+// What can be read from a scene and a state: each body's attitude, angular velocity, position and
+// velocity, and the scene's energy, momenta and constraint drift. Every function is a const
+// function of the scene (the model) and a state (a SceneState or a view of an integrator's
+// state), so that a saved state reads the same whenever and by whichever copy of the scene it is
+// read. Units: SI (m, m/s, rad/s, J, kg m/s, kg m^2/s); vectors in inertial components unless
+// said otherwise (omega is in body components, as everywhere in tumble).
+
+#include <algorithm>
+#include <cmath>
+#include <tuple>
+#include <type_traits>
+
+#include "tumble/core/types.hpp"
+#include "tumble/force/coupling.hpp"
+#include "tumble/scene/detail/body_terms.hpp"
+#include "tumble/scene/scene.hpp"
+#include "tumble/scene/state.hpp"
+
+namespace tumble {
+
+namespace detail {
+template <class Entry> auto theta_of(const Entry& e, const SceneStateView& s) {
+  using Body = std::remove_cvref_t<decltype(e.body)>;
+  return typename Body::Theta(s.y.template segment<Body::n_theta>(e.offset + 3));
+}
+template <class Entry> auto thetadot_of(const Entry& e, const SceneStateView& s) {
+  using Body = std::remove_cvref_t<decltype(e.body)>;
+  return typename Body::Theta(s.y.template segment<Body::n_theta>(e.offset + Body::nq + 3));
+}
+/// R = R0 R(theta), Eq. (1.1) with the chart base.
+template <class Entry> Matrix3<double> rotation_of(const Entry& e, const SceneStateView& s) {
+  using P = typename std::remove_cvref_t<decltype(e.body)>::Param;
+  const Matrix3<double> r = P::rotation(theta_of(e, s));
+  if constexpr (Chart<P>::has_singularity) {
+    return s.base[e.id] * r;
+  } else {
+    return r;
+  }
+}
+/// omega = G thetadot, Eq. (1.5): the same in every chart (R0 is constant).
+template <class Entry> Vector3<double> omega_of(const Entry& e, const SceneStateView& s) {
+  using P = typename std::remove_cvref_t<decltype(e.body)>::Param;
+  return P::G(theta_of(e, s)) * thetadot_of(e, s);
+}
+/// rdot of the centroid, Eq. (1.4) with r_cp = r_cg.
+template <class Entry> Vector3<double> centroid_velocity_of(const Entry& e, const SceneStateView& s) {
+  using Body = std::remove_cvref_t<decltype(e.body)>;
+  const Vector3<double> v = s.y.template segment<3>(e.offset + Body::nq);
+  if constexpr (Body::at_centroid) {
+    return v;
+  } else {
+    return v + rotation_of(e, s) * omega_of(e, s).cross(e.body.mass_properties().centroid());
+  }
+}
+/// The full kinematics of body e (with R), as its loads see them.
+template <class Entry>
+auto kinematics_of(const Entry& e, const SceneStateView& s) {
+  using Body = std::remove_cvref_t<decltype(e.body)>;
+  constexpr int nq = Body::nq;
+  BodyKinematics<double, Body::reference> k;
+  k.mass_properties = &e.body.mass_properties();
+  body_kinematics<Body>(s.y.template segment<nq>(e.offset), s.y.template segment<nq>(e.offset + nq),
+                        s.base[e.id], true, k);
+  return k;
+}
+}  // namespace detail
+
+/// R of body b (body -> inertial), chart base included.
+template <class SceneT, class Body>
+[[nodiscard]] Matrix3<double> rotation(const SceneT& scene, BodyId<Body> b,
+                                       const SceneStateView& s) {
+  return detail::rotation_of(scene.entry(b), s);
+}
+/// omega of body b, body components, rad/s.
+template <class SceneT, class Body>
+[[nodiscard]] Vector3<double> omega(const SceneT& scene, BodyId<Body> b, const SceneStateView& s) {
+  return detail::omega_of(scene.entry(b), s);
+}
+/// r_oc of body b's reference point, inertial, m.
+template <class SceneT, class Body>
+[[nodiscard]] Vector3<double> position(const SceneT& scene, BodyId<Body> b,
+                                       const SceneStateView& s) {
+  return s.y.template segment<3>(scene.entry(b).offset);
+}
+/// rdot_oc of body b's reference point, inertial, m/s.
+template <class SceneT, class Body>
+[[nodiscard]] Vector3<double> velocity(const SceneT& scene, BodyId<Body> b,
+                                       const SceneStateView& s) {
+  return s.y.template segment<3>(scene.entry(b).offset + Body::nq);
+}
+/// r_og of body b's centroid, inertial, m.
+template <class SceneT, class Body>
+[[nodiscard]] Vector3<double> centroid_position(const SceneT& scene, BodyId<Body> b,
+                                                const SceneStateView& s) {
+  const auto& e = scene.entry(b);
+  return position(scene, b, s) + detail::rotation_of(e, s) * e.body.mass_properties().centroid();
+}
+
+/// Sets the velocity (inertial, m/s) and the angular velocity (body, rad/s) of body b in s, e.g.
+/// in an event action (an impulse). The attitude and the chart are unchanged.
+template <class SceneT, class Body>
+void set_velocity(const SceneT& scene, BodyId<Body> b, SceneState& s, const Vector3<double>& v,
+                  const Vector3<double>& omega_body) {
+  const auto& e = scene.entry(b);
+  s.y.template segment<3>(e.offset + Body::nq) = v;
+  s.y.template segment<Body::n_theta>(e.offset + Body::nq + 3) =
+      Body::Param::thetadot(detail::theta_of(e, s), omega_body);
+}
+
+/// Sum of the kinetic energies, J.
+template <class SceneT> [[nodiscard]] double kinetic_energy(const SceneT& scene, const SceneStateView& s) {
+  double t = 0;
+  scene.for_each_entry([&](const auto& e) {
+    const Vector3<double> vg = detail::centroid_velocity_of(e, s);
+    const Vector3<double> w = detail::omega_of(e, s);
+    const auto& mp = e.body.mass_properties();
+    t += 0.5 * (mp.mass() * vg.squaredNorm() + w.dot(mp.inertia_centroid() * w));
+  });
+  return t;
+}
+
+/// Sum of the potential energies of the loads that have one (gravity, springs), J. User loads
+/// have none.
+template <class SceneT>
+[[nodiscard]] double potential_energy(const SceneT& scene, const SceneStateView& s) {
+  double v = 0;
+  scene.for_each_load([&](const auto& a) {
+    using Load = std::remove_cvref_t<decltype(a.load)>;
+    if constexpr (CouplingElement<Load>) {
+      scene.visit_entry(a.a, [&](const auto& ea) {
+        scene.visit_entry(a.b, [&](const auto& eb) {
+          const auto ka = detail::kinematics_of(ea, s);
+          const auto kb = detail::kinematics_of(eb, s);
+          if constexpr (requires { a.load.potential_energy(ka, kb); }) {
+            v += a.load.potential_energy(ka, kb);
+          }
+        });
+      });
+    } else {
+      scene.visit_entry(a.a, [&](const auto& e) {
+        const auto k = detail::kinematics_of(e, s);
+        if constexpr (requires { a.load.potential_energy(k); }) {
+          v += a.load.potential_energy(k);
+        }
+      });
+    }
+  });
+  return v;
+}
+
+/// T + V, J.
+template <class SceneT> [[nodiscard]] double energy(const SceneT& scene, const SceneStateView& s) {
+  return kinetic_energy(scene, s) + potential_energy(scene, s);
+}
+
+/// Total linear momentum, inertial components, kg m/s.
+template <class SceneT>
+[[nodiscard]] Vector3<double> linear_momentum(const SceneT& scene, const SceneStateView& s) {
+  Vector3<double> p = Vector3<double>::Zero();
+  scene.for_each_entry([&](const auto& e) {
+    p += e.body.mass_properties().mass() * detail::centroid_velocity_of(e, s);
+  });
+  return p;
+}
+
+/// Total angular momentum about the inertial origin, inertial components, kg m^2/s.
+template <class SceneT>
+[[nodiscard]] Vector3<double> angular_momentum(const SceneT& scene, const SceneStateView& s) {
+  Vector3<double> h = Vector3<double>::Zero();
+  scene.for_each_entry([&](const auto& e) {
+    const auto& mp = e.body.mass_properties();
+    const Matrix3<double> r = detail::rotation_of(e, s);
+    const Vector3<double> rg =
+        Vector3<double>(s.y.template segment<3>(e.offset)) + r * mp.centroid();
+    h += rg.cross(mp.mass() * detail::centroid_velocity_of(e, s)) +
+         r * (mp.inertia_centroid() * detail::omega_of(e, s));
+  });
+  return h;
+}
+
+/// The largest violation of |p| = 1 and p.pdot = 0 over the Euler-parameter bodies.
+template <class SceneT>
+[[nodiscard]] double constraint_drift(const SceneT& scene, const SceneStateView& s) {
+  double d = 0;
+  scene.for_each_entry([&](const auto& e) {
+    using Body = std::remove_cvref_t<decltype(e.body)>;
+    if constexpr (Body::Param::has_constraint) {
+      const Vector4<double> p = s.y.template segment<4>(e.offset + 3);
+      const Vector4<double> pd = s.y.template segment<4>(e.offset + Body::nq + 3);
+      d = std::max({d, std::abs(p.norm() - 1.0), std::abs(p.dot(pd))});
+    }
+  });
+  return d;
+}
+
+}  // namespace tumble

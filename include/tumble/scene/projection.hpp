@@ -1,0 +1,37 @@
+#pragma once
+// The projection of a scene's state onto the constraint manifold of its Euler-parameter bodies,
+// |p| = 1 and p.pdot = 0 (what CVODE's projection with BDF applies after each step).
+
+#include <type_traits>
+
+#include "tumble/core/types.hpp"
+#include "tumble/scene/scene.hpp"
+
+namespace tumble {
+
+/// The correction `corr` that takes y onto the manifold: p -> p/|p| and pdot -> pdot - (p.pdot) p
+/// (the orthogonal projection); zero elsewhere. When `err` is not empty (the local error
+/// estimate) its component normal to the manifold is removed too, as CVODE's projection expects.
+template <class SceneT, class Y, class C, class E>
+void project(const SceneT& scene, const Y& y, C&& corr, E&& err) {
+  corr.setZero();
+  scene.for_each_entry([&](const auto& e) {
+    using Body = std::remove_cvref_t<decltype(e.body)>;
+    if constexpr (Body::Param::has_constraint) {
+      const int ip = e.offset + 3, iv = e.offset + Body::nq + 3;
+      const Vector4<double> p = y.template segment<4>(ip);
+      const Vector4<double> pd = y.template segment<4>(iv);
+      const Vector4<double> pn = p / p.norm();
+      corr.template segment<4>(ip) = pn - p;
+      corr.template segment<4>(iv) = -pn.dot(pd) * pn;
+      if (err.size() > 0) {
+        const Vector4<double> ep = err.template segment<4>(ip);
+        const Vector4<double> ev = err.template segment<4>(iv);
+        err.template segment<4>(ip) = ep - pn.dot(ep) * pn;
+        err.template segment<4>(iv) = ev - pn.dot(ev) * pn;
+      }
+    }
+  });
+}
+
+}  // namespace tumble

@@ -1,0 +1,89 @@
+#pragma once
+// The right-hand side of a scene: y' = f(t, y) with y = [q; qdot] per body (state.hpp).
+//
+// Per body k: f_k = [qdot_k; qddot_k], where qddot_k solves M qddot = f_v + Q (reference chapter,
+// Eq. 1.32; Eq. 1.33 at the centroid) for the wrench W_k of its loads (rigid_body.hpp, which
+// goes from the wrench to the accelerations without forming Q when the body has no other use
+// for it). Three passes, each over concrete types: the kinematics of every body (R only where a
+// load or the offset frame needs it, composed with the body's chart base R0 from the state), the
+// loads (one-body loads with the body's typed kinematics, couplings with both), then the
+// accelerations. Nothing is allocated: the scratch lives in the workspace.
+
+#include <cstddef>
+#include <span>
+#include <tuple>
+#include <type_traits>
+
+#include "tumble/force/concept.hpp"
+#include "tumble/force/coupling.hpp"
+#include "tumble/scene/detail/body_terms.hpp"
+#include "tumble/scene/scene.hpp"
+#include "tumble/scene/workspace.hpp"
+
+namespace tumble {
+
+namespace detail {
+
+/// Pass 1: every body's kinematics at (y, base) into the workspace, wrenches cleared.
+template <class SceneT, class Y>
+void scene_kinematics(const SceneT& scene, SceneWorkspace<SceneT>& ws, const Y& y,
+                      std::span<const Matrix3<double>> base, bool all_rotations = false) {
+  scene.for_each_entry([&](const auto& e) {
+    using Body = std::remove_cvref_t<decltype(e.body)>;
+    constexpr int nq = Body::nq;
+    auto& k = ws.kinematics(e);
+    k.mass_properties = &e.body.mass_properties();
+    body_kinematics<Body>(y.template segment<nq>(e.offset), y.template segment<nq>(e.offset + nq),
+                          base[e.id], all_rotations || e.needs_rotation, k);
+    ws.wrench(e.id) = Wrench<double>{};
+  });
+}
+
+/// Pass 2: every load of type Load adds its wrench (couplings to both bodies).
+template <class Load, class SceneT>
+void scene_loads_of_type(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t) {
+  for (const auto& a : scene.template loads<Load>()) {
+    if constexpr (CouplingElement<Load>) {
+      a.load.apply(t, ws.view(a.a), ws.view(a.b), ws.wrench(a.a), ws.wrench(a.b));
+    } else {
+      scene.visit_entry(a.a, [&](const auto& e) { a.load.apply(t, ws.kinematics(e), ws.wrench(e.id)); });
+    }
+  }
+}
+
+template <class SceneT, std::size_t... I>
+void scene_loads(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t,
+                 std::index_sequence<I...>) {
+  (scene_loads_of_type<std::tuple_element_t<I, typename SceneT::LoadTypes>>(scene, ws, t), ...);
+}
+
+}  // namespace detail
+
+/// y' = f(t, y) for the state (y, base) into ydot (any Eigen vectors of size scene.size(), e.g.
+/// maps of an integrator's memory). Throws NonFiniteError on a non-finite result (which CVODE
+/// treats as recoverable: it retries with a smaller step).
+template <class SceneT, class Y, class Ydot>
+void rhs(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y& y,
+         std::span<const Matrix3<double>> base, Ydot&& ydot) {
+  detail::scene_kinematics(scene, ws, y, base);
+  detail::scene_loads(scene, ws, t,
+                      std::make_index_sequence<std::tuple_size_v<typename SceneT::LoadTypes>>{});
+  scene.for_each_entry([&](const auto& e) {
+    using Body = std::remove_cvref_t<decltype(e.body)>;
+    constexpr int nq = Body::nq;
+    const typename Body::Coords q = y.template segment<nq>(e.offset);
+    const typename Body::Coords qd = y.template segment<nq>(e.offset + nq);
+    ydot.template segment<nq>(e.offset) = qd;
+    ydot.template segment<nq>(e.offset + nq) = detail::body_accelerations(
+        e.body, q, qd, ws.kinematics(e), ws.wrench(e.id), ws.stabilize_constraints);
+  });
+}
+
+/// The same for an owned state.
+template <class SceneT, class Ydot>
+void rhs(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const SceneState& s,
+         Ydot&& ydot) {
+  rhs(scene, ws, t, s.y, std::span<const Matrix3<double>>(s.base), std::forward<Ydot>(ydot));
+}
+
+}  // namespace tumble
