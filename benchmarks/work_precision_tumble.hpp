@@ -57,17 +57,17 @@ Run run_scene(const Problem& p, const CvodeSetting& c, const Timing& timing, Bui
       std::size_t k = 0;
       integrator.integrate(p.times, [&](double, auto y) {
         Sample& s = run.samples[k++];
-        s.rotation = scene.rotation(id, y);
-        s.omega = scene.omega(id, y);
-        s.position = scene.position(id, y);
-        s.velocity = scene.velocity(id, y);
+        s.rotation = tumble::rotation(scene, id, y);
+        s.omega = tumble::omega(scene, id, y);
+        s.position = tumble::position(scene, id, y);
+        s.velocity = tumble::velocity(scene, id, y);
       });
       record_time(run, times, watch, timing);
       const SceneStatistics st = integrator.statistics();
       record_statistics(run, st);
       run.chart_switches = st.chart_switches;
       if constexpr (Body::Param::has_constraint) {
-        run.constraint_drift = scene.constraint_drift(integrator.state());
+        run.constraint_drift = tumble::constraint_drift(scene, integrator.state());
       }
     } while (another_rep(timing, times));
   } catch (const std::exception& e) {

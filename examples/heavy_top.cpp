@@ -42,8 +42,8 @@ int main() {
   double azimuth = 0, last = 0, tip_max = 0;
   bool first = true;
   for (int k = 1; k <= 4000; ++k) {
-    const auto y = integrator.advance(t_end * k / 4000);
-    const Eigen::Vector3d axis = scene.rotation(id, y).col(2);
+    const tumble::SceneState& y = integrator.advance(t_end * k / 4000);
+    const Eigen::Vector3d axis = tumble::rotation(scene, id, y).col(2);
     const double a = std::atan2(axis(1), axis(0));
     if (!first) {
       double d = a - last;
@@ -52,7 +52,7 @@ int main() {
     }
     first = false;
     last = a;
-    tip_max = std::max(tip_max, scene.position(id, y).norm());
+    tip_max = std::max(tip_max, tumble::position(scene, id, y).norm());
   }
   const auto s = integrator.statistics();
   const double omega_fast = m * 9.81 * l / (i3 * spin);
@@ -61,6 +61,6 @@ int main() {
   std::printf("largest tip displacement from the pivot: %.2e m (static sag m g/k = %.2e m)\n",
               tip_max, m * 9.81 / 1e6);
   std::printf("BDF: %ld steps, %ld right-hand sides, %ld Jacobians, quaternion drift %.1e\n",
-              s.steps, s.rhs_evals, s.jacobian_evals, scene.constraint_drift(integrator.state()));
+              s.steps, s.rhs_evals, s.jacobian_evals, tumble::constraint_drift(scene, integrator.state()));
   return 0;
 }

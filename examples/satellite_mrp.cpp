@@ -47,10 +47,10 @@ int main() {
   SceneIntegrator integrator(scene, 0.0, options);
   std::printf("   t (s)   error (deg)   |omega| (rad/s)   |sigma|\n");
   for (double t : {0.0, 10.0, 20.0, 40.0, 60.0, 90.0, 120.0}) {
-    const auto y = t > 0 ? integrator.advance(t) : integrator.state();
-    const Eigen::Matrix3d e = target.transpose() * scene.rotation(id, y);
+    const tumble::SceneState& y = t > 0 ? integrator.advance(t) : integrator.state();
+    const Eigen::Matrix3d e = target.transpose() * tumble::rotation(scene, id, y);
     const double err = Eigen::AngleAxisd(e).angle() / deg;
-    std::printf("%8.1f %13.4f %17.3e %9.4f\n", t, err, scene.omega(id, y).norm(),
+    std::printf("%8.1f %13.4f %17.3e %9.4f\n", t, err, tumble::omega(scene, id, y).norm(),
                 y.segment<3>(scene.offset(id) + 3).norm());
   }
   const auto s = integrator.statistics();

@@ -35,11 +35,13 @@
 #include "support/catch.hpp"
 #include "support/parameterizations.hpp"
 #include "support/random.hpp"
+#include "support/scene_fixtures.hpp"
 #include "support/torque_free.hpp"
 #include "tumble/body/rigid_body.hpp"
 #include "tumble/force/gravity.hpp"
 #include "tumble/force/spring_damper.hpp"
 #include "tumble/integrate/scene_integrator.hpp"
+#include "tumble/scene/observables.hpp"
 #include "tumble/scene/scene.hpp"
 
 namespace {
@@ -65,15 +67,10 @@ using tumble::test::TorqueFreeBody;
 
 constexpr double pi = std::numbers::pi;
 
+using tumble::test::method_name;
 SceneIntegratorOptions options(CvodeMethod method, double tol, long max_steps = 1000000) {
-  SceneIntegratorOptions o;
-  o.cvode.method = method;
-  o.cvode.rtol = tol;
-  o.cvode.atol = tol;
-  o.cvode.max_steps = max_steps;
-  return o;
+  return tumble::test::integrator_options(method, tol, max_steps);
 }
-const char* method_name(CvodeMethod m) { return m == CvodeMethod::adams ? "Adams" : "BDF"; }
 
 /// Bound on the global error of an attitude or angular-velocity history after `steps` steps at
 /// tolerance `tol` over [0, t_end], for a motion turning at `rate` rad/s. Each step commits a
@@ -89,8 +86,8 @@ double global_error_bound(double tol, long steps, double rate, double t_end) {
 
 // ---- the tumbling body: long runs --------------------------------------------------------------
 
-const Vector3d kInertia(1.0, 2.0, 3.0);
-const Vector3d kOmega(0.1, 2.0, 0.05);
+const Vector3d kInertia = tumble::test::kTumblingInertia;
+const Vector3d kOmega = tumble::test::kTumblingOmega;
 const Matrix3d kR0 = Eigen::AngleAxisd(0.5, Vector3d(1, -1, 2).normalized()).toRotationMatrix();
 
 struct LongRun {
@@ -118,21 +115,23 @@ LongRun long_tumble(CvodeMethod method, double tol, double t_end, double k = 1.0
   std::vector<double> crossings;
   // The flips are the zeros of omega_2 (the intermediate axis): CVODE locates them.
   scene.add_event(Event{
-      [&scene, id](double, const Eigen::Ref<const VectorXd>& y) { return scene.omega(id, y)(1); },
-      0, [&crossings](double t, Eigen::Ref<VectorXd>) { crossings.push_back(t); }});
-  const double e0 = scene.kinetic_energy(scene.initial_state());
-  const Vector3d h0 = scene.angular_momentum(scene.initial_state());
+      [&scene, id](double, const tumble::SceneStateView& y) {
+        return tumble::omega(scene, id, y)(1);
+      },
+      0, [&crossings](double t, tumble::SceneState&) { crossings.push_back(t); }});
+  const double e0 = tumble::kinetic_energy(scene, scene.initial_state());
+  const Vector3d h0 = tumble::angular_momentum(scene, scene.initial_state());
   SceneIntegrator integrator(scene, 0.0, options(method, tol));
   LongRun r;
   const int outputs = 200;
   for (int i = 1; i <= outputs; ++i) {
-    const VectorXd y = integrator.advance(t_end * i / outputs);
-    r.energy_drift = std::max(r.energy_drift, std::abs(scene.kinetic_energy(y) - e0) / e0);
+    const tumble::SceneState& y = integrator.advance(t_end * i / outputs);
+    r.energy_drift = std::max(r.energy_drift, std::abs(tumble::kinetic_energy(scene, y) - e0) / e0);
     r.momentum_drift =
-        std::max(r.momentum_drift, (scene.angular_momentum(y) - h0).norm() / h0.norm());
-    r.quaternion_drift = std::max(r.quaternion_drift, scene.constraint_drift(y));
+        std::max(r.momentum_drift, (tumble::angular_momentum(scene, y) - h0).norm() / h0.norm());
+    r.quaternion_drift = std::max(r.quaternion_drift, tumble::constraint_drift(scene, y));
     if (i % 10 == 0) {
-      const double p = TorqueFreeBody(kInertia, scene.omega(id, y)).flip_interval();
+      const double p = TorqueFreeBody(kInertia, tumble::omega(scene, id, y)).flip_interval();
       r.period_spread = std::max(r.period_spread, std::abs(p / ref.flip_interval() - 1.0));
     }
   }
@@ -292,22 +291,22 @@ template <class P> SingularRun singular_run(CvodeMethod m, double tol, int turns
   const double t_end = 2.0 * turns;
   for (int i = 1; i <= 40 * turns; ++i) {
     const double t = t_end * i / (40 * turns);
-    const VectorXd y = integrator.advance(t);
+    const tumble::SceneState& y = integrator.advance(t);
     r.attitude =
-        std::max(r.attitude, rotation_angle_between(scene.rotation(ib, y), scene.rotation(ie, y)));
-    r.omega = std::max(r.omega, (scene.omega(ib, y) - scene.omega(ie, y)).norm());
+        std::max(r.attitude, rotation_angle_between(tumble::rotation(scene, ib, y), tumble::rotation(scene, ie, y)));
+    r.omega = std::max(r.omega, (tumble::omega(scene, ib, y) - tumble::omega(scene, ie, y)).norm());
     r.reference =
-        std::max(r.reference, rotation_angle_between(scene.rotation(ib, y), ref.rotation(t)));
+        std::max(r.reference, rotation_angle_between(tumble::rotation(scene, ib, y), ref.rotation(t)));
     // T = 1/2 omega . I omega and h = R I omega of the three-parameter body, from its state.
-    const Vector3d w = scene.omega(ib, y);
-    const Vector3d h = scene.rotation(ib, y) * inertia.cwiseProduct(w);
+    const Vector3d w = tumble::omega(scene, ib, y);
+    const Vector3d h = tumble::rotation(scene, ib, y) * inertia.cwiseProduct(w);
     r.energy = std::max(r.energy, std::abs(0.5 * w.dot(inertia.cwiseProduct(w)) /
                                                static_cast<double>(ref.kinetic_energy_ld()) -
                                            1.0));
     r.momentum =
         std::max(r.momentum, (h - ref.angular_momentum()).norm() / ref.angular_momentum().norm());
   }
-  r.switches = scene.chart_switches(ib);
+  r.switches = integrator.chart_switches(ib);
   r.steps = integrator.statistics().steps;
   return r;
 }
@@ -358,17 +357,17 @@ ClosedFormRun closed_form_error(const Vector3d& inertia, const Vector3d& omega, 
   Scene<Bodies<B>> scene;
   const auto id = scene.add(B(MassProperties<>::about_centroid(1.0, inertia.asDiagonal())),
                             {.rotation = kR0, .omega = omega});
-  const double e0 = scene.kinetic_energy(scene.initial_state());
+  const double e0 = tumble::kinetic_energy(scene, scene.initial_state());
   SceneIntegrator integrator(scene, 0.0, options(m, tol));
   double err = 0, de = 0;
   for (int i = 1; i <= 100; ++i) {
     const double t = t_end * i / 100;
-    const VectorXd y = integrator.advance(t);
-    err = std::max(err, rotation_angle_between(scene.rotation(id, y), ref.rotation(t)));
-    err = std::max(err, (scene.omega(id, y) - ref.omega(t)).norm() / omega.norm());
-    de = std::max(de, std::abs(scene.kinetic_energy(y) - e0) / e0);
+    const tumble::SceneState& y = integrator.advance(t);
+    err = std::max(err, rotation_angle_between(tumble::rotation(scene, id, y), ref.rotation(t)));
+    err = std::max(err, (tumble::omega(scene, id, y) - ref.omega(t)).norm() / omega.norm());
+    de = std::max(de, std::abs(tumble::kinetic_energy(scene, y) - e0) / e0);
   }
-  return {err, de, integrator.statistics().steps, scene.chart_switches(id)};
+  return {err, de, integrator.statistics().steps, integrator.chart_switches(id)};
 }
 
 }  // namespace
@@ -441,9 +440,9 @@ template <class P> Scaled scaled_run(double m, double l, CvodeMethod method, dou
   SceneIntegrator integrator(scene, 0.0, o);
   Scaled s;
   for (int i = 1; i <= 20; ++i) {
-    const VectorXd y = integrator.advance(0.5 * i);
-    s.rotation.push_back(scene.rotation(id, y));
-    s.position.push_back(scene.position(id, y) / l);
+    const tumble::SceneState& y = integrator.advance(0.5 * i);
+    s.rotation.push_back(tumble::rotation(scene, id, y));
+    s.position.push_back(tumble::position(scene, id, y) / l);
   }
   s.steps = integrator.statistics().steps;
   return s;
@@ -517,8 +516,8 @@ StiffRun stiff_run(double ratio, CvodeMethod method, long max_steps) {
   StiffRun r;
   try {
     for (int i = 1; i <= 10; ++i) {
-      const VectorXd y = integrator.advance(0.1 * i);
-      r.drift = std::max(r.drift, scene.constraint_drift(y));
+      const tumble::SceneState& y = integrator.advance(0.1 * i);
+      r.drift = std::max(r.drift, tumble::constraint_drift(scene, y));
     }
     r.ok = true;
   } catch (const IntegrationError& e) {

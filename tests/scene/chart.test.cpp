@@ -1,5 +1,5 @@
-// Tests of tumble::Chart (include/tumble/scene/chart.hpp) and of how a scene leaves a chart
-// (Scene::recenter_charts, Scene::roots, Scene::on_root in include/tumble/scene/scene.hpp).
+// Tests of tumble::Chart (include/tumble/scene/chart.hpp) and of how a scene's state leaves a
+// chart (recenter_charts, chart_roots, leave_charts in include/tumble/scene/charts.hpp).
 //
 // Expectations come from the geometry of each parameterization's singular set, independently of
 // the code: Tait-Bryan angles are singular at theta2 = +-pi/2, proper Euler angles at theta2 in
@@ -15,6 +15,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <span>
 #include <type_traits>
 
 #include <Eigen/Core>
@@ -24,6 +25,8 @@
 #include "support/parameterizations.hpp"
 #include "support/random.hpp"
 #include "tumble/body/rigid_body.hpp"
+#include "tumble/scene/charts.hpp"
+#include "tumble/scene/observables.hpp"
 #include "tumble/scene/scene.hpp"
 
 namespace {
@@ -139,7 +142,6 @@ TEMPLATE_LIST_TEST_CASE("leaving a chart keeps R and omega", "[scene][chart]",
     const Matrix3d start =
         Eigen::AngleAxisd(0.2, Vector3d(0, 0, 1)).toRotationMatrix() * P::rotation(C::center());
     const auto h = scene.add(Body(mp), {.rotation = start});
-    scene.prepare();
     REQUIRE(scene.root_count() == 1);
     CHECK(scene.root_directions() == std::vector<int>{-1});
 
@@ -149,22 +151,28 @@ TEMPLATE_LIST_TEST_CASE("leaving a chart keeps R and omega", "[scene][chart]",
     REQUIRE(std::abs(P::singularity_distance(th) - distance) < 1e-12);
     REQUIRE(distance < C::switch_distance());
     const Vector3d w(1.5, -0.8, 2.2);
-    VectorXd y = scene.initial_state();
-    y.segment<3>(3) = th;
-    y.segment<3>(9) = P::thetadot(th, w);
+    tumble::SceneState y = scene.initial_state();
+    REQUIRE(y.base[0] == Matrix3d::Identity());
+    y.y.segment<3>(3) = th;
+    y.y.segment<3>(9) = P::thetadot(th, w);
+    const std::span<Matrix3d> base(y.base);
+    long switches = 0;
+    const auto count = [&](int id) {
+      CHECK(id == h.id);
+      ++switches;
+    };
     const Matrix3d r = P::rotation(th);
 
     // The root function is the distance minus the switch distance: negative here.
     VectorXd g(1);
-    scene.roots(0.0, y, g);
+    tumble::chart_roots(scene, y.y, g);
     CHECK(std::abs(g[0] - (distance - expected_center_distance<P>() / 2)) < 1e-12);
 
-    CHECK(scene.recenter_charts(y));
-    CHECK(scene.chart_switches(h) == 1);
-    CHECK(scene.chart_switches() == 1);
-    CHECK(max_abs(scene.rotation(h, y) - r) < 1e-14);
-    CHECK(max_abs(scene.omega(h, y) - w) < 1e-13 * w.norm());
-    const Vector3d th1 = y.segment<3>(3);
+    CHECK(tumble::recenter_charts(scene, y.y, base, count) == 1);
+    CHECK(switches == 1);
+    CHECK(max_abs(tumble::rotation(scene, h, y) - r) < 1e-14);
+    CHECK(max_abs(tumble::omega(scene, h, y) - w) < 1e-13 * w.norm());
+    const Vector3d th1 = y.y.segment<3>(3);
     if constexpr (C::uses_shadow_set) {
       // The shadow set -sigma/|sigma|^2: the same attitude the other way round (phi' = 2 pi - phi).
       CHECK(max_abs(th1 + th / th.squaredNorm()) < 1e-15);
@@ -172,37 +180,44 @@ TEMPLATE_LIST_TEST_CASE("leaving a chart keeps R and omega", "[scene][chart]",
     } else {
       CHECK(max_abs(th1 - expected_center<P>()) < 1e-15);  // back at the center
     }
-    scene.roots(0.0, y, g);
+    if constexpr (C::uses_shadow_set) {
+      CHECK(y.base[0] == Matrix3d::Identity());  // the shadow set keeps the base
+    } else {
+      CHECK(max_abs(y.base[0] * P::rotation(th1) - r) < 1e-14);  // the base took the attitude
+    }
+    tumble::chart_roots(scene, y.y, g);
     CHECK(g[0] > 0.0);  // out of the switch zone
     // Nothing more to do: a second call changes nothing.
-    const VectorXd y1 = y;
-    CHECK_FALSE(scene.recenter_charts(y));
-    CHECK(y == y1);
-    CHECK(scene.chart_switches(h) == 1);
+    const tumble::SceneState y1 = y;
+    CHECK(tumble::recenter_charts(scene, y) == 0);
+    CHECK(y.y == y1.y);
+    CHECK(y.base == y1.base);
+    CHECK(switches == 1);
 
     // At a root the integrator calls on_root(): the chart is left again (for MRP, back to the
     // first set), the attitude composed with the chart base stays the same.
-    const Matrix3d r1 = scene.rotation(h, y);
+    const Matrix3d r1 = tumble::rotation(scene, h, y);
     const int which[1] = {1};
-    CHECK(scene.on_root(1.0, y, which));
-    CHECK(scene.chart_switches(h) == 2);
-    CHECK(max_abs(scene.rotation(h, y) - r1) < 1e-14);
-    CHECK(max_abs(scene.omega(h, y) - w) < 1e-13 * w.norm());
+    CHECK(tumble::leave_charts(scene, y.y, base, which, count) == 1);
+    CHECK(switches == 2);
+    CHECK(max_abs(tumble::rotation(scene, h, y) - r1) < 1e-14);
+    CHECK(max_abs(tumble::omega(scene, h, y) - w) < 1e-13 * w.norm());
     const int none[1] = {0};
-    const VectorXd y2 = y;
-    CHECK_FALSE(scene.on_root(2.0, y, none));
-    CHECK(y == y2);
+    const tumble::SceneState y2 = y;
+    CHECK(tumble::leave_charts(scene, y.y, base, none, count) == 0);
+    CHECK(y.y == y2.y);
+    CHECK(y.base == y2.base);
 
     // Many switches in a row do not accumulate rounding in the attitude (the chart base is
     // re-orthonormalized).
     for (int i = 0; i < 200; ++i) {
-      scene.on_root(3.0, y, which);
+      tumble::leave_charts(scene, y.y, base, which, count);
     }
-    CHECK(scene.chart_switches(h) == 202);
-    const Matrix3d r2 = scene.rotation(h, y);
+    CHECK(switches == 202);
+    const Matrix3d r2 = tumble::rotation(scene, h, y);
     CHECK(max_abs(r2 - r1) < 1e-13);
     CHECK(max_abs(r2.transpose() * r2 - Matrix3d::Identity()) < 1e-15);
-    CHECK(max_abs(scene.omega(h, y) - w) < 1e-12 * w.norm());
+    CHECK(max_abs(tumble::omega(scene, h, y) - w) < 1e-12 * w.norm());
   } else {
     SUCCEED("Euler parameters have no singular attitude: no chart to leave");
   }
@@ -220,13 +235,18 @@ TEST_CASE("a body added near its singular set starts on a re-centered chart", "[
       Eigen::AngleAxisd(170.0 * pi / 180, Vector3d(1, 1, 0).normalized()).toRotationMatrix();
   const auto g = scene.add(G(mp), {.rotation = r, .omega = Vector3d(0, 0, 3)});
   const auto z = scene.add(Z(mp), {.omega = Vector3d(1, 2, 3)});
-  const VectorXd& y = scene.initial_state();
+  const tumble::SceneState& st = scene.initial_state();
+  const VectorXd& y = st.y;
   CHECK(y.segment<3>(scene.offset(g) + 3).norm() == 0.0);
   CHECK(max_abs(y.segment<3>(scene.offset(z) + 3) - Vector3d(0, pi / 2, 0)) < 1e-15);
-  CHECK(max_abs(scene.rotation(g, y) - r) < 1e-14);
-  CHECK(max_abs(scene.rotation(z, y) - Matrix3d::Identity()) < 1e-15);
-  CHECK(max_abs(scene.omega(g, y) - Vector3d(0, 0, 3)) < 1e-14);
-  CHECK(max_abs(scene.omega(z, y) - Vector3d(1, 2, 3)) < 1e-14);
+  CHECK(max_abs(tumble::rotation(scene, g, st) - r) < 1e-14);
+  CHECK(max_abs(tumble::rotation(scene, z, st) - Matrix3d::Identity()) < 1e-15);
+  CHECK(max_abs(tumble::omega(scene, g, st) - Vector3d(0, 0, 3)) < 1e-14);
+  CHECK(max_abs(tumble::omega(scene, z, st) - Vector3d(1, 2, 3)) < 1e-14);
   CHECK(y.allFinite());
-  CHECK(scene.chart_switches() == 0);  // a start, not a switch
+  // The attitude lives in the chart bases: the Gibbs body's is R itself (theta = 0), the ZXZ
+  // body's R R(theta_c)^T.
+  CHECK(max_abs(st.base[g.id] - r) < 1e-14);
+  CHECK(max_abs(st.base[z.id] * tumble::EulerZXZ::rotation(Vector3d(0, pi / 2, 0)) -
+                Matrix3d::Identity()) < 1e-15);
 }

@@ -1,6 +1,7 @@
-// Tests of Scene::jacobian (include/tumble/scene/scene.hpp): the Jacobian df/dy of the scene's
-// right-hand side, which the scene forms block by block with automatic differentiation (Jet<N>,
-// core/jet.hpp). The reference is independent of it: central differences of Scene::rhs itself,
+// Tests of tumble::jacobian (include/tumble/scene/jacobian.hpp): the Jacobian df/dy of the scene's
+// right-hand side, formed block by block with automatic differentiation (Jet<N>, core/jet.hpp),
+// and of the block preconditioner built on it (scene/preconditioner.hpp). The reference is
+// independent of it: central differences of tumble::rhs itself,
 // extrapolated by Richardson (tests/support/finite_difference.hpp), one column per coordinate,
 // with their own error estimate. Checked for every parameterization in mixed scenes that have
 // every load type (one-body loads, spring-dampers between bodies, a user force and a user coupling
@@ -16,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -38,6 +40,10 @@
 #include "tumble/force/spring_damper.hpp"
 #include "tumble/force/user_force.hpp"
 #include "tumble/integrate/scene_integrator.hpp"
+#include "tumble/scene/jacobian.hpp"
+#include "tumble/scene/observables.hpp"
+#include "tumble/scene/preconditioner.hpp"
+#include "tumble/scene/rhs.hpp"
 #include "tumble/scene/scene.hpp"
 
 namespace {
@@ -141,21 +147,21 @@ template <class P> void build(MixedScene<P>& scene, tumble::test::Random& rng) {
                  tumble::SpringDamperBetween(rng.vector(0.3), Vector3d::Zero(),
                                              {.stiffness = 10, .damping = 0.3}));
   scene.add_load(a, d, tumble::UserCoupling<Torsion>(Torsion{}));
-  scene.prepare();
 }
 
-/// Column j of df/dy at y by Richardson-extrapolated central differences of Scene::rhs, with a
+/// Column j of df/dy at y by Richardson-extrapolated central differences of tumble::rhs, with a
 /// bound on its error: the extrapolation's own estimate (tests/support/finite_difference.hpp,
 /// which assumes f in long double) plus the rounding of f in double, 3 eps |f| / h_min (the
 /// weights of the extrapolation sum to less than 3).
 template <class SceneT>
-std::pair<VectorXd, double> fd_column(SceneT& scene, double t, const VectorXd& y, int j) {
+std::pair<VectorXd, double> fd_column(const SceneT& scene, tumble::SceneWorkspace<SceneT>& ws,
+                                      double t, const tumble::SceneState& st, int j) {
   double f_scale = 0;
   const auto f = [&](long double h) {
-    VectorXd yh = y;
+    VectorXd yh = st.y;
     yh(j) += static_cast<double>(h);
-    VectorXd out(y.size());
-    scene.rhs(t, yh, out);
+    VectorXd out(yh.size());
+    tumble::rhs(scene, ws, t, yh, std::span<const Matrix3d>(st.base), out);
     f_scale = std::max(f_scale, out.cwiseAbs().maxCoeff());
     return Eigen::Matrix<long double, Eigen::Dynamic, 1>(out.cast<long double>());
   };
@@ -168,7 +174,7 @@ std::pair<VectorXd, double> fd_column(SceneT& scene, double t, const VectorXd& y
 
 }  // namespace
 
-TEMPLATE_LIST_TEST_CASE("Scene::jacobian equals extrapolated central differences of rhs",
+TEMPLATE_LIST_TEST_CASE("jacobian equals extrapolated central differences of rhs",
                         "[scene][jacobian]", tumble::test::AllParameterizations) {
   using P = TestType;
   tumble::test::Random rng(7301);
@@ -176,8 +182,10 @@ TEMPLATE_LIST_TEST_CASE("Scene::jacobian equals extrapolated central differences
     MixedScene<P> scene;
     build(scene, rng);
     const bool stabilize = trial != 1;
-    scene.set_constraint_stabilization(stabilize);
-    VectorXd y = scene.initial_state();
+    tumble::SceneWorkspace ws(scene);
+    ws.stabilize_constraints = stabilize;
+    tumble::SceneState st = scene.initial_state();
+    VectorXd& y = st.y;
     if (trial == 2) {
       // Off the manifold of the Euler parameters (and anywhere else): the Baumgarte term and
       // the unconstrained parts of the formulas are differentiated where they matter.
@@ -186,10 +194,10 @@ TEMPLATE_LIST_TEST_CASE("Scene::jacobian equals extrapolated central differences
     const int n = scene.size();
     const double t = 0.37;
     MatrixXd jac = MatrixXd::Zero(n, n);
-    scene.jacobian(t, y, jac);
+    tumble::jacobian(scene, ws, t, st, jac);
     double worst = 0;
     for (int j = 0; j < n; ++j) {
-      const auto [ref, fd_error] = fd_column(scene, t, y, j);
+      const auto [ref, fd_error] = fd_column(scene, ws, t, st, j);
       const double scale = std::max(1.0, ref.cwiseAbs().maxCoeff());
       const double err = (jac.col(j) - ref).cwiseAbs().maxCoeff();
       INFO("trial " << trial << " (Baumgarte " << stabilize << "), column " << j << " of " << n
@@ -206,16 +214,16 @@ TEMPLATE_LIST_TEST_CASE("Scene::jacobian equals extrapolated central differences
   }
 }
 
-TEST_CASE("Scene::jacobian: the band storage holds the dense Jacobian's band",
-          "[scene][jacobian]") {
+TEST_CASE("jacobian: the band storage holds the dense Jacobian's band", "[scene][jacobian]") {
   using P = tumble::EulerZXZ;
   tumble::test::Random rng(99);
   MixedScene<P> scene;
   build(scene, rng);
-  const VectorXd y = scene.initial_state();
+  const tumble::SceneState& st = scene.initial_state();
+  tumble::SceneWorkspace ws(scene);
   const int n = scene.size();
   MatrixXd dense = MatrixXd::Zero(n, n);
-  scene.jacobian(0.0, y, dense);
+  tumble::jacobian(scene, ws, 0.0, st, dense);
   const int full = scene.half_bandwidth();
   for (const int bw : {full, full / 2, 3}) {
     INFO("half-bandwidth " << bw << " (the scene's: " << full << ")");
@@ -223,7 +231,7 @@ TEST_CASE("Scene::jacobian: the band storage holds the dense Jacobian's band",
     const int smu = 2 * bw, ldim = smu + bw + 1;
     std::vector<double> storage(static_cast<std::size_t>(ldim) * n, 0.0);
     const tumble::BandMatrixMap band(storage.data(), n, ldim, smu, bw, bw);
-    scene.jacobian(0.0, y, band);
+    tumble::jacobian(scene, ws, 0.0, st, band);
     double in_band_diff = 0, outside = 0;
     for (int j = 0; j < n; ++j) {
       for (int i = 0; i < n; ++i) {
@@ -273,7 +281,7 @@ static_assert(tumble::CvodeHasBandJacobian<tumble::detail::SceneSystem<Different
 static_assert(!tumble::CvodeHasJacobian<tumble::detail::SceneSystem<NotDifferentiable>>);
 static_assert(!tumble::CvodeHasBandJacobian<tumble::detail::SceneSystem<NotDifferentiable>>);
 
-TEST_CASE("Scene::jacobian: a singular attitude throws NonFiniteError, omega = 0 is finite",
+TEST_CASE("jacobian: a singular attitude throws NonFiniteError, omega = 0 is finite",
           "[scene][jacobian]") {
   using ZXZ = RigidBody<tumble::EulerZXZ>;
   using EP = RigidBody<tumble::EulerParameters>;
@@ -284,18 +292,19 @@ TEST_CASE("Scene::jacobian: a singular attitude throws NonFiniteError, omega = 0
   const auto b = scene.add(EP(
       MassProperties<double>::about_centroid(1.0, Vector3d(1, 2, 3).asDiagonal())));  // omega = 0
   scene.add_load(b, tumble::UniformGravity(Vector3d(0, 0, -9.81)));
-  scene.prepare();
   const int n = scene.size();
-  VectorXd y = scene.initial_state();
+  tumble::SceneState st = scene.initial_state();
+  VectorXd& y = st.y;
   MatrixXd jac = MatrixXd::Zero(n, n);
   // omega = 0 with the Baumgarte term: |omega| is not differentiable there; the Jacobian takes
   // its one-sided derivative and stays finite, and its other entries are the differences'.
-  scene.set_constraint_stabilization(true);
-  scene.jacobian(0.0, y, jac);
+  tumble::SceneWorkspace ws(scene);
+  ws.stabilize_constraints = true;
+  tumble::jacobian(scene, ws, 0.0, st, jac);
   CHECK(jac.allFinite());
   const int ob = scene.offset(b);
   for (int j = ob; j < ob + 7; ++j) {  // the columns of q_b (the rates enter through |omega|)
-    const auto [ref, fd_error] = fd_column(scene, 0.0, y, j);
+    const auto [ref, fd_error] = fd_column(scene, ws, 0.0, st, j);
     CHECK((jac.col(j) - ref).cwiseAbs().maxCoeff() <=
           fd_error + 100 * std::numeric_limits<double>::epsilon() * ref.cwiseAbs().maxCoeff());
   }
@@ -303,39 +312,44 @@ TEST_CASE("Scene::jacobian: a singular attitude throws NonFiniteError, omega = 0
   // G is singular, the accelerations are not finite, and the Jacobian reports it as rhs() does.
   y(scene.offset(a) + 4) = 0.0;
   jac.setZero();
-  CHECK_THROWS_AS(scene.jacobian(0.0, y, jac), tumble::NonFiniteError);
+  CHECK_THROWS_AS(tumble::jacobian(scene, ws, 0.0, st, jac), tumble::NonFiniteError);
   VectorXd f(n);
-  CHECK_THROWS_AS(scene.rhs(0.0, y, f), tumble::NonFiniteError);
+  CHECK_THROWS_AS(tumble::rhs(scene, ws, 0.0, st, f), tumble::NonFiniteError);
 }
 
-TEST_CASE("Scene::jacobian allocates nothing", "[scene][jacobian]") {
+TEST_CASE("jacobian allocates nothing", "[scene][jacobian]") {
   tumble::test::Random rng(5);
   MixedScene<tumble::EulerXYZ> scene;
   build(scene, rng);
-  const VectorXd y = scene.initial_state();
+  const tumble::SceneState& st = scene.initial_state();
+  tumble::SceneWorkspace ws(scene);
   const int n = scene.size();
   MatrixXd dense = MatrixXd::Zero(n, n);
   const int bw = scene.half_bandwidth();
   std::vector<double> storage(static_cast<std::size_t>(3 * bw + 1) * n, 0.0);
   const tumble::BandMatrixMap band(storage.data(), n, 3 * bw + 1, 2 * bw, bw, bw);
-  scene.jacobian(0.0, y, dense);  // prepare() has run
+  tumble::jacobian(scene, ws, 0.0, st, dense);
   tumble::test::AllocationCounter counter;
-  scene.jacobian(0.0, y, dense);
-  scene.jacobian(0.0, y, band);
+  tumble::jacobian(scene, ws, 0.0, st, dense);
+  tumble::jacobian(scene, ws, 0.0, st, band);
   CHECK(counter.stop() == 0);
 }
 
-TEST_CASE("Scene::precondition_solve solves (I - gamma J_D) z = r with J_D the block diagonal of J",
+TEST_CASE("BlockPreconditioner solves (I - gamma J_D) z = r with J_D the block diagonal of J",
           "[scene][jacobian][preconditioner]") {
   tumble::test::Random rng(17);
-  MixedScene<tumble::ModifiedRodriguesParameters> scene;
+  using SceneT = MixedScene<tumble::ModifiedRodriguesParameters>;
+  SceneT scene;
   build(scene, rng);
-  scene.set_constraint_stabilization(false);
-  scene.prepare_preconditioner();
-  const VectorXd y = scene.initial_state();
+  tumble::SceneWorkspace ws(scene);
+  ws.stabilize_constraints = false;
+  tumble::BlockPreconditioner<SceneT> pre(scene);
+  const tumble::SceneState& st = scene.initial_state();
+  const VectorXd& y = st.y;
+  const std::span<const Matrix3d> base(st.base);
   const int n = scene.size();
   MatrixXd jac = MatrixXd::Zero(n, n);
-  scene.jacobian(0.2, y, jac);
+  tumble::jacobian(scene, ws, 0.2, st, jac);
   // The block diagonal of the dense Jacobian, one block [q; qdot] per body.
   MatrixXd jd = MatrixXd::Zero(n, n);
   scene.for_each_entry([&](const auto& e) {
@@ -346,22 +360,22 @@ TEST_CASE("Scene::precondition_solve solves (I - gamma J_D) z = r with J_D the b
   const VectorXd r = VectorXd::NullaryExpr(n, [&] { return rng.uniform(-1, 1); });
   for (const double gamma : {1e-4, 1e-2, 0.3}) {
     INFO("gamma " << gamma);
-    CHECK(scene.precondition_setup(0.2, y, false, gamma));  // J_D computed
+    CHECK(pre.setup(scene, ws, 0.2, y, base, false, gamma));  // J_D computed
     VectorXd z(n);
-    scene.precondition_solve(r, z);
+    pre.solve(r, z);
     const MatrixXd p = MatrixXd::Identity(n, n) - gamma * jd;
     const VectorXd expected = p.partialPivLu().solve(r);
     CHECK((z - expected).cwiseAbs().maxCoeff() < 1e-13 * (1 + expected.cwiseAbs().maxCoeff()));
     // With jacobian_ok the saved blocks are reused: the same result, and no recomputation.
-    CHECK_FALSE(scene.precondition_setup(0.2, y, true, gamma));
+    CHECK_FALSE(pre.setup(scene, ws, 0.2, y, base, true, gamma));
     VectorXd z2(n);
-    scene.precondition_solve(r, z2);
+    pre.solve(r, z2);
     CHECK(z2 == z);
   }
   VectorXd z(n);
   tumble::test::AllocationCounter counter;
-  scene.precondition_setup(0.2, y, false, 0.01);
-  scene.precondition_solve(r, z);
+  pre.setup(scene, ws, 0.2, y, base, false, 0.01);
+  pre.solve(r, z);
   CHECK(counter.stop() == 0);
 }
 
@@ -410,14 +424,14 @@ StiffRun stiff_tops(tumble::CvodeLinearSolver solver, bool exact_jacobian, doubl
   o.cvode.preconditioning = side;
   tumble::SceneIntegrator integrator(scene, 0.0, o);
   StiffRun r;
-  r.y = integrator.advance(2.0);
+  const tumble::SceneState& s = integrator.advance(2.0);
   r.stats = integrator.statistics();
   // Compare physical states, not coordinates: the chart bases of the two runs may differ.
-  VectorXd phys(2 * 3 + 2 * 9 + 2 * 3 + 2 * 3);
-  phys << scene.position(a, r.y), scene.position(b, r.y), scene.rotation(a, r.y).reshaped(),
-      scene.rotation(b, r.y).reshaped(), scene.velocity(a, r.y), scene.velocity(b, r.y),
-      scene.omega(a, r.y), scene.omega(b, r.y);
-  r.y = phys;
+  r.y.resize(2 * 3 + 2 * 9 + 2 * 3 + 2 * 3);
+  r.y << tumble::position(scene, a, s), tumble::position(scene, b, s),
+      tumble::rotation(scene, a, s).reshaped(), tumble::rotation(scene, b, s).reshaped(),
+      tumble::velocity(scene, a, s), tumble::velocity(scene, b, s), tumble::omega(scene, a, s),
+      tumble::omega(scene, b, s);
   return r;
 }
 

@@ -47,6 +47,10 @@ struct SceneIntegratorOptions {
   /// With BDF: project Euler parameters onto their constraint after each step. With Adams the
   /// Baumgarte stabilization is used (CVODE cannot project with Adams).
   bool project_quaternions = true;
+  /// Where Euler parameters are not projected (Adams, or BDF with project_quaternions = false):
+  /// stabilize |p| = 1 with Baumgarte terms in the constraint acceleration (scene/rhs.hpp). Off,
+  /// the constraint drifts freely (for studies of the drift itself).
+  bool stabilize_quaternions = true;
 };
 
 /// CVODE's counters plus the scene's chart switches.
@@ -305,7 +309,7 @@ template <class SceneT> class SceneIntegrator {
     const bool preconditioned = bdf &&
                                 options.cvode.linear_solver == CvodeLinearSolver::gmres &&
                                 options.cvode.preconditioning != CvodePreconditioning::none;
-    SceneSystem system(scene, s0.base, !project, preconditioned);
+    SceneSystem system(scene, s0.base, !project && options.stabilize_quaternions, preconditioned);
     Eigen::VectorXd y = s0.y;
     system.recenter(y);
     return Cvode<SceneSystem>(std::move(system), t0, y, std::move(options.cvode));

@@ -33,8 +33,9 @@ namespace detail {
 
 /// Body e's one-body loads in scalar S with its kinematics k.
 template <class SceneT, class Entry, class S, class K, std::size_t... I>
-void one_body_loads(const SceneT& scene, const Entry& e, const S& t, const K& k, Wrench<S>& w,
-                    std::index_sequence<I...>) {
+void one_body_loads([[maybe_unused]] const SceneT& scene, [[maybe_unused]] const Entry& e,
+                    [[maybe_unused]] const S& t, [[maybe_unused]] const K& k,
+                    [[maybe_unused]] Wrench<S>& w, std::index_sequence<I...>) {
   (
       [&] {
         using Load = std::tuple_element_t<I, typename SceneT::LoadTypes>;

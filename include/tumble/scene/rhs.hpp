@@ -52,8 +52,8 @@ void scene_loads_of_type(const SceneT& scene, SceneWorkspace<SceneT>& ws, double
 }
 
 template <class SceneT, std::size_t... I>
-void scene_loads(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t,
-                 std::index_sequence<I...>) {
+void scene_loads([[maybe_unused]] const SceneT& scene, [[maybe_unused]] SceneWorkspace<SceneT>& ws,
+                 [[maybe_unused]] double t, std::index_sequence<I...>) {
   (scene_loads_of_type<std::tuple_element_t<I, typename SceneT::LoadTypes>>(scene, ws, t), ...);
 }
 
