@@ -12,7 +12,7 @@ require_debian_packages() {
   fi
   local missing=() p
   for p in "$@"; do
-    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' ||
+    [[ $(dpkg-query -W -f='${Status}' "$p" 2>/dev/null) == "install ok installed" ]] ||
       missing+=("$p")
   done
   if ((${#missing[@]} == 0)); then
