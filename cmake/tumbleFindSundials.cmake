@@ -15,6 +15,29 @@ macro(tumble_find_sundials out_var)
   find_package(SUNDIALS 6 QUIET CONFIG)
   if(SUNDIALS_FOUND)
     set(_tumble_ok TRUE)
+    # A SUNDIALS built with MPI (Debian 13's 7.x) puts MPI::MPI_C in SUNDIALS::core's link
+    # interface and looks MPI up itself, but FindMPI defines MPI::MPI_C only when the C language
+    # is enabled: a C++-only project (tumble, most of its users) then fails at generate time with
+    # "MPI::MPI_C ... target was not found". MPI::MPI_CXX brings the same libmpi and mpi.h (which
+    # SUNDIALS 7's sundials_types.h includes), so it stands in for it.
+    foreach(_tumble_core SUNDIALS::core_shared SUNDIALS::core_static)
+      if(TARGET ${_tumble_core} AND NOT TARGET MPI::MPI_C)
+        get_target_property(_tumble_links ${_tumble_core} INTERFACE_LINK_LIBRARIES)
+        if("MPI::MPI_C" IN_LIST _tumble_links)
+          if(NOT TARGET MPI::MPI_CXX)
+            find_package(MPI QUIET COMPONENTS CXX)
+          endif()
+          if(TARGET MPI::MPI_CXX)
+            add_library(MPI::MPI_C INTERFACE IMPORTED)
+            target_link_libraries(MPI::MPI_C INTERFACE MPI::MPI_CXX)
+          else()
+            message(STATUS "tumble: this SUNDIALS was built with MPI, and MPI was not found "
+                           "(Debian: apt-get install mpi-default-dev)")
+            set(_tumble_ok FALSE)
+          endif()
+        endif()
+      endif()
+    endforeach()
     foreach(_c IN LISTS TUMBLE_SUNDIALS_COMPONENTS ITEMS core)
       set(_tumble_t "")
       foreach(_cand SUNDIALS::${_c} SUNDIALS::${_c}_shared SUNDIALS::${_c}_static)
