@@ -25,6 +25,7 @@ set(TUMBLE_BENCH_PLOT_PYTHON "${_tumble_plot_python_default}" CACHE STRING
 add_executable(tumble_bench
   work_precision_main.cpp
   work_precision_problems.cpp
+  work_precision_floors.cpp
   work_precision_tumble_a.cpp
   work_precision_tumble_b.cpp
   work_precision_scaling.cpp
