@@ -1,5 +1,5 @@
-// tumble_micro: per-step micro-benchmarks of tumble's core assembly (issue 4, part 1), with
-// Google Benchmark. For every parameterization (the 12 Euler sequences, Euler parameters,
+// tumble_micro: per-step micro-benchmarks of tumble's core assembly, with Google
+// Benchmark. For every parameterization (the 12 Euler sequences, Euler parameters,
 // Rodrigues (Gibbs) parameters, modified Rodrigues parameters, the rotation vector) and both
 // reference points (centroid, offset) it times, in ns per call:
 //   rotation/<P>                        P::rotation, R (Eq. 1.1)
@@ -14,8 +14,9 @@
 // R and G do not depend on the reference point and are timed once per parameterization. The
 // baselines (dense LU, hand-written closed form) are in micro_baselines.cpp, the peers in
 // micro_pinocchio.cpp and micro_mujoco.cpp; benchmarks/summarize_micro.py turns the JSON output
-// into the ratios issue 4 sets targets for. micro_jacobian.cpp times the scene's Jacobian
-// (automatic differentiation) against difference quotients.
+// into the ratios of docs/benchmarks.md, and tumble_bench prints the medians of its short list.
+// micro_jacobian.cpp times the scene's Jacobian (automatic differentiation) against difference
+// quotients.
 
 #include <cstdio>
 #include <string>

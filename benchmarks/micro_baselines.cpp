@@ -1,4 +1,4 @@
-// tumble_micro's baselines (issue 4, part 1): what tumble's qddot is measured against.
+// tumble_micro's baselines: what tumble's qddot is measured against.
 //
 //   dense_lu/<P>/<ref>            the generic route: assemble M (Eq. 1.23), f_v (Eqs. 1.26-1.27)
 //                                 and Q (Eq. 1.31, the same loads as qddot_loads) densely, and

@@ -1,5 +1,5 @@
 #pragma once
-// Shared fixtures of tumble's per-step micro-benchmarks (tumble_micro, issue 4): one body, one set
+// Shared fixtures of tumble's per-step micro-benchmarks (tumble_micro): one body, one set
 // of loads and 64 random states, so that every benchmark (tumble, the dense-LU baseline, the
 // hand-written closed form, Pinocchio, MuJoCo) times the same work on the same data.
 //

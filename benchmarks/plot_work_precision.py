@@ -3,7 +3,7 @@
 
 Usage: plot_work_precision.py RESULTS_DIR
 
-Reads, in RESULTS_DIR (written by tumble_bench, see benchmarks/work_precision_main.cpp):
+Reads, in RESULTS_DIR (written by tumble_bench, see benchmarks/work_precision_csv.cpp):
   work_precision_<problem>.csv  one row per method x tolerance (or RK4 step size)
   problems.csv                  id, title, reference, reference_uncertainty_rad
   scaling.csv                   the chain of N bodies (optional)

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Summarize tumble_micro's results: the ratios issue 4 sets targets for, met or missed.
+"""Summarize tumble_micro's results: ratios against the project's performance goals.
 
 Interface (standard library only; for /usr/bin/python3 or any python >= 3.8)
 ---------------------------------------------------------------------------
@@ -9,8 +9,8 @@ Summarize a result file written by tumble_micro:
                  --benchmark_out=micro.json --benchmark_out_format=json
     summarize_micro.py micro.json [--markdown] [--csv times.csv] [--summary-json ratios.json]
 
-Or let the script run tumble_micro first (this is what the work-precision driver, tumble_bench,
-calls for its short micro summary):
+Or let the script run tumble_micro first (this is what tumble_bench, the main job, calls for its
+per-call table, reading the medians from --csv):
 
     summarize_micro.py --run PATH/TO/tumble_micro --quick --out DIR/micro.json
 
@@ -57,7 +57,7 @@ THREE_PARAMETER_ORDER = [
 ]
 REFS = ["centroid", "offset"]
 
-# Targets of issue 4 (ratios of times measured in one run).
+# The project's performance goals (ratios of times measured in one run; docs/benchmarks.md).
 FLOOR_MAX = 1.2       # tumble's centroidal EP qddot / the hand-written closed form
 PINOCCHIO_MIN = 8.0   # Pinocchio's aba / tumble's EP qddot
 OFFSET_MAX = 2.0      # offset / centroid, per parameterization

@@ -1,10 +1,10 @@
-# tumble_bench: the work-precision driver and scaling study, the README's main job:
+# tumble_bench, the README's main job: per-call costs, work precision and scaling:
 #   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j2 --target tumble_bench
 #   ./build/benchmarks/tumble_bench            # --full for the complete sweep, --help for options
 # Included by benchmarks/CMakeLists.txt, in its scope: it uses the Pinocchio detection there
 # (TUMBLE_BENCH_HAVE_PINOCCHIO, target tumble_bench_pinocchio) when it exists.
 #
-# The results (CSV, PNG, summary.txt) go to ${PROJECT_BINARY_DIR}/benchmark-results unless
+# The results (CSV, PNG, summary.txt, the raw micro-benchmark output micro.txt/.json) go to ${PROJECT_BINARY_DIR}/benchmark-results unless
 # --out says otherwise. The plots are drawn by plot_work_precision.py with matplotlib; the
 # Python that runs it defaults to Debian's /usr/bin/python3 (python3-matplotlib) when present,
 # since the python3 first on PATH may lack matplotlib. Set TUMBLE_BENCH_PLOT_PYTHON to change it.
@@ -22,17 +22,26 @@ endif()
 set(TUMBLE_BENCH_PLOT_PYTHON "${_tumble_plot_python_default}" CACHE STRING
     "Python (with matplotlib) that tumble_bench runs to draw its plots")
 
+# The driver reads like a table of contents: the problems, the methods (tumble, the floors, the
+# peers), the sweep, the report, the CSV writer, each in its own file (see their top comments).
 add_executable(tumble_bench
-  work_precision_main.cpp
-  work_precision_problems.cpp
-  work_precision_tumble_a.cpp
-  work_precision_tumble_b.cpp
-  work_precision_scaling.cpp
-  work_precision_pinocchio.cpp)
-target_link_libraries(tumble_bench PRIVATE tumble::cvode tumble_project_options)
-# tests/support/torque_free.hpp: the analytic torque-free reference (TorqueFreeBody).
-target_include_directories(tumble_bench PRIVATE ${PROJECT_SOURCE_DIR}/tests
-                                               ${CMAKE_CURRENT_SOURCE_DIR})
+  work_precision_main.cpp        # the phases of the main job, in order
+  work_precision_options.cpp     # command-line options
+  work_precision_problems.cpp    # problems, exact references, error measures
+  work_precision_tumble_a.cpp    # method: tumble, parameterizations of the default run
+  work_precision_tumble_b.cpp    # method: tumble, the other Euler sequences (--full)
+  work_precision_floors.cpp      # methods: hand-written CVODE floor, fixed-step RK4
+  work_precision_pinocchio.cpp   # method: Pinocchio's aba in CVODE (when installed)
+  work_precision_sweep.cpp       # which runs to make, and making them
+  work_precision_scaling.cpp     # the scaling study (chain of N bodies)
+  work_precision_report.cpp      # the terminal tables
+  work_precision_csv.cpp         # the CSV files
+  work_precision_tools.cpp       # the programs it runs: tumble_micro, the plot script
+)
+# tumble_test_support (tests/support/CMakeLists.txt): support/torque_free.hpp, the exact solution
+# of the torque-free body.
+target_link_libraries(tumble_bench PRIVATE tumble::cvode tumble_test_support tumble_project_options)
+target_include_directories(tumble_bench PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
 
 string(TOUPPER "${CMAKE_BUILD_TYPE}" _tumble_wp_bt)
 string(STRIP "${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${_tumble_wp_bt}}" _tumble_wp_flags)
@@ -62,7 +71,7 @@ else()
   message(STATUS "tumble_bench: without Pinocchio (its reference is skipped)")
 endif()
 
-# The micro-benchmarks run first in tumble_bench (their ratios head its summary): build them with it.
+# The micro-benchmarks run first in tumble_bench (their medians are its table (a)): build them with it.
 if(TARGET tumble_micro)
   add_dependencies(tumble_bench tumble_micro)
   target_compile_definitions(tumble_bench PRIVATE

@@ -10,13 +10,13 @@
 // on the wall clock (std::chrono::steady_clock) and, beside it, on the thread's CPU-time clock;
 // building the problem's data is not timed.
 //
-// Methods (see work_precision_main.cpp for the sweep and the summary):
+// Methods (the sweep that runs them: work_precision_sweep.cpp):
 //  - tumble: a Scene of one RigidBody<P> integrated by SceneIntegrator (CVODE Adams or BDF), for
 //    every orientation parameterization P (work_precision_tumble.hpp);
 //  - the hand-written CVODE floor: the same CVODE settings on a plain tumble::Cvode system whose
 //    right-hand side is the Euler-parameter closed form written out by hand
-//    (work_precision_problems.cpp);
-//  - fixed-step classical RK4 on the Euler-parameter equations (work_precision_problems.cpp);
+//    (work_precision_floors.cpp);
+//  - fixed-step classical RK4 on the Euler-parameter equations (work_precision_floors.cpp);
 //  - Pinocchio's aba inside the same CVODE setup, when Pinocchio is installed
 //    (work_precision_pinocchio.cpp).
 // Conventions are tumble's (docs/conventions.md): R maps body components to inertial ones,
@@ -211,7 +211,7 @@ bool another_rep(const Timing& timing, const std::vector<double>& times);
 
 /// The four problems with their output times and, for the three with a closed form, their
 /// exact reference samples. The stiff top's reference is filled in by the driver (it needs an
-/// integration, see make_stiff_reference in work_precision_main.cpp).
+/// integration, see make_stiff_reference in work_precision_sweep.cpp).
 std::vector<Problem> make_problems(int output_count);
 
 /// The stiff top's reference (it has no closed form): tumble's equations of the same body and

@@ -1,0 +1,127 @@
+#pragma once
+// tumble_bench, the driver: what its own files offer each other. The shared data types
+// (problems, runs, errors, methods, the scaling study) are in work_precision.hpp; this header adds
+//   options    the command line                        (work_precision_options.cpp)
+//   sweep      which runs to make, and making them     (work_precision_sweep.cpp)
+//   report     the terminal tables                     (work_precision_report.cpp)
+//   csv        the CSV files                           (work_precision_csv.cpp)
+//   tools      tumble_micro and the plot script        (work_precision_tools.cpp)
+// and work_precision_main.cpp runs the phases in order.
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "work_precision.hpp"
+
+#ifndef TUMBLE_BENCH_DEFAULT_OUT
+#define TUMBLE_BENCH_DEFAULT_OUT "benchmark-results"
+#endif
+#ifndef TUMBLE_BENCH_PLOT_PYTHON
+#define TUMBLE_BENCH_PLOT_PYTHON "python3"
+#endif
+
+namespace tumble::bench {
+
+// ---- options ---------------------------------------------------------------------------------
+
+struct Options {
+  bool full = false;
+  std::string out = TUMBLE_BENCH_DEFAULT_OUT;
+  int reps = 3;
+  int outputs = 200;
+  std::set<std::string> problems;    // empty: all
+  std::vector<std::string> methods;  // empty: all; else method labels containing one of these
+  std::vector<double> tolerances;    // empty: the default sweep
+  bool scaling = true;
+  bool plots = true;
+  bool micro = true;
+  bool exact_jacobian = true;  // tumble with BDF: the scene's Jacobian, or difference quotients
+  TimeBase clock = TimeBase::wall;
+  std::string python = TUMBLE_BENCH_PLOT_PYTHON;
+};
+
+/// The options, or nullopt after --help (printed). Throws std::invalid_argument on a bad one.
+std::optional<Options> parse_options(int argc, char** argv);
+
+// ---- sweep -----------------------------------------------------------------------------------
+
+/// The tolerances rtol = atol of the CVODE methods, unless --tolerances says otherwise.
+extern const std::vector<double> kTolerances;
+
+enum class Family { tumble, handwritten, pinocchio, rk4 };
+const char* family_name(Family f);
+
+/// One measurement to make: a method on a problem at one setting.
+struct Job {
+  const Problem* problem = nullptr;
+  Family family = Family::tumble;
+  const Parameterization* param = nullptr;  // tumble only
+  Scheme scheme = Scheme::adams;
+  double tol = 0;                             // CVODE methods
+  int substeps = 0;                           // RK4: steps per output interval
+  [[nodiscard]] std::string method() const;   ///< "tumble EulerParameters adams", ...
+  [[nodiscard]] std::string setting() const;  ///< "tol=1.0e-06" or "h=2.5e-01"
+};
+
+/// A finished measurement.
+struct Row {
+  Job job;
+  Run run;
+  Errors errors;
+};
+
+/// The parameterizations of the run (the default's six, or all sixteen with --full).
+std::vector<Parameterization> parameterizations(const Options& o);
+/// Every run of the work-precision sweep, problem by problem, filtered by --methods.
+std::vector<Job> plan_jobs(const Options& o, const std::vector<Problem>& problems,
+                           const std::vector<Parameterization>& params);
+/// Makes one run and measures its errors (the samples are then dropped).
+Row run_job(const Job& j, const Options& o, const Timing& timing);
+/// The stiff top's reference integration (it has no closed form), into p.reference.
+void make_stiff_reference(Problem& p);
+/// The bodies counts and repetitions of the scaling study.
+ScalingPlan scaling_plan(const Options& o);
+
+// ---- report ----------------------------------------------------------------------------------
+
+/// CPU ns per call of each micro-benchmark (Google Benchmark name -> median).
+using MicroTimes = std::map<std::string, double>;
+
+/// The header: what is measured, on what, how it is timed, how long it takes, where it goes.
+std::string header_text(const Options& o, const std::filesystem::path& out, int runs);
+/// (a) ns per call of the core assembly per parameterization, with the baselines and peers.
+std::string micro_table(const MicroTimes& ns);
+/// (b) time to reach max attitude error 1e-3 / 1e-6 / 1e-9 and the best error, per method.
+std::string problem_table(const Problem& p, const std::vector<Row>& rows);
+/// The column headings of the work-precision tables (one for all problems).
+std::string problem_table_header();
+/// The footer of the work-precision tables: how t(e) is read off a sweep.
+std::string problem_table_footer(TimeBase clock);
+/// (c) cost per right-hand side and per BDF step against the number of bodies, with slopes.
+std::string scaling_table(const std::vector<ScalingRow>& rows);
+
+// ---- csv -------------------------------------------------------------------------------------
+
+void write_runs_csv(const std::filesystem::path& path, const std::vector<Row>& rows);
+void write_scaling_csv(const std::filesystem::path& path, const std::vector<ScalingRow>& rows);
+void write_problems_csv(const std::filesystem::path& path, const std::vector<Problem>& problems);
+/// Reads "benchmark,cpu_ns" (summarize_micro.py --csv); empty when the file is not there.
+MicroTimes read_micro_csv(const std::filesystem::path& path);
+
+// ---- tools -----------------------------------------------------------------------------------
+
+/// Runs the short list of tumble_micro (through summarize_micro.py) with every raw output in
+/// `out`: micro.json, micro.txt (Google Benchmark's console table), micro_summary.txt (ratios),
+/// micro_times.csv. Returns the times, or nullopt with `note` saying why there are none.
+std::optional<MicroTimes> run_micro(const Options& o, const std::filesystem::path& out,
+                                    std::string& note);
+/// Draws the PNG diagrams from the CSVs in `out` (plot_work_precision.py); returns "" on success,
+/// else why not.
+std::string draw_plots(const Options& o, const std::filesystem::path& out);
+
+}  // namespace tumble::bench

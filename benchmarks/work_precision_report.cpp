@@ -1,0 +1,390 @@
+// tumble_bench: the report, the text it prints (and copies to summary.txt):
+//   the header  what is measured, on which machine and build, how it is timed, how long it takes;
+//   (a)         ns per call of the core assembly per parameterization, beside the baselines and
+//               the peers that were built (tumble_micro's medians);
+//   (b)         per problem and method, the time to reach a maximum attitude error of 1e-3, 1e-6
+//               and 1e-9 rad, read off the method's tolerance sweep (time_at below), and the best
+//               error the sweep reached;
+//   (c)         the cost of a right-hand side and of a BDF step against the number of bodies, with
+//               the log-log slope.
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Core>
+#include <sundials/sundials_config.h>
+
+#include "work_precision_driver.hpp"
+#include "work_precision_format.hpp"
+
+#ifndef TUMBLE_BENCH_BUILD_TYPE
+#define TUMBLE_BENCH_BUILD_TYPE "unknown"
+#endif
+#ifndef TUMBLE_BENCH_CXX_FLAGS
+#define TUMBLE_BENCH_CXX_FLAGS "unknown"
+#endif
+
+namespace tumble::bench {
+namespace {
+
+// ---- the header --------------------------------------------------------------------------------
+
+std::string first_line(const char* path, const std::string& key) {
+  std::ifstream f(path);
+  std::string line;
+  while (std::getline(f, line)) {
+    if (key.empty() || line.rfind(key, 0) == 0) {
+      const auto colon = line.find(':');
+      return key.empty() || colon == std::string::npos ? line : line.substr(colon + 2);
+    }
+  }
+  return "unknown";
+}
+
+std::string compiler() {
+#if defined(__clang__)
+  return std::string("Clang ") + __clang_version__;
+#elif defined(__GNUC__)
+  return std::string("GCC ") + __VERSION__;
+#else
+  return "unknown compiler";
+#endif
+}
+
+/// `text` broken at spaces into lines of at most 100 columns, continued with `indent`.
+std::string wrap(const std::string& text, const std::string& indent) {
+  constexpr std::size_t width = 100;
+  std::string out, line;
+  std::size_t pos = 0;
+  while (pos < text.size()) {
+    auto next = text.find(' ', pos + 1);
+    if (next == std::string::npos) {
+      next = text.size();
+    }
+    const std::string word = text.substr(pos, next - pos);
+    if (line.size() + word.size() > width && line.size() > indent.size() + 1) {
+      out += line + "\n";
+      line = indent + word.substr(word.front() == ' ' ? 1 : 0);
+    } else {
+      line += word;
+    }
+    pos = next;
+  }
+  return out + line + "\n";
+}
+
+// ---- (b): time to reach an error, read off a sweep ----------------------------------------------
+
+struct Point {
+  double error;
+  double time;
+};
+
+/// The time a method needs to reach max attitude error `target`, read off its runs: keep the
+/// Pareto front (each kept run is faster than every more accurate one), then interpolate
+/// log(time) linearly in log(error) between the two front runs that bracket the target. When
+/// even the cheapest run is more accurate than the target, its time (an upper bound, `bound`);
+/// when no run reaches the target, nullopt.
+struct TimeAt {
+  double time = std::numeric_limits<double>::quiet_NaN();
+  bool bound = false;
+};
+
+std::optional<TimeAt> time_at(std::vector<Point> points, double target) {
+  std::erase_if(points, [](const Point& p) {
+    return !(std::isfinite(p.error) && p.error > 0 && std::isfinite(p.time));
+  });
+  if (points.empty()) {
+    return std::nullopt;
+  }
+  std::sort(points.begin(), points.end(),
+            [](const Point& a, const Point& b) { return a.time < b.time; });
+  std::vector<Point> front;
+  for (const Point& p : points) {
+    if (front.empty() || p.error < front.back().error) {
+      front.push_back(p);
+    }
+  }
+  if (target >= front.front().error) {
+    return TimeAt{front.front().time, true};
+  }
+  for (std::size_t i = 0; i + 1 < front.size(); ++i) {
+    const Point& a = front[i];
+    const Point& b = front[i + 1];
+    if (target <= a.error && target >= b.error) {
+      const double s = std::log(target / a.error) / std::log(b.error / a.error);
+      return TimeAt{std::exp(std::log(a.time) + s * std::log(b.time / a.time)), false};
+    }
+  }
+  return std::nullopt;
+}
+
+/// The row label of a method, without its scheme: tumble's rows are named by parameterization.
+std::string method_label(const Job& j) {
+  switch (j.family) {
+    case Family::tumble:
+      return j.param->name == "ModifiedRodriguesParameters"
+                 ? std::string("ModifiedRodrigues")
+                 : (j.param->name == "RodriguesParameters" ? std::string("Rodrigues (Gibbs)")
+                                                           : j.param->name);
+    case Family::handwritten:
+      return "hand-written EP floor";
+    case Family::pinocchio:
+      return "Pinocchio aba";
+    case Family::rk4:
+      return "RK4 fixed step (EP)";
+  }
+  return "?";
+}
+
+const std::vector<double> kErrors = {1e-3, 1e-6, 1e-9};
+
+// ---- (c): slopes -------------------------------------------------------------------------------
+
+/// Least-squares slope of log(y) against log(x).
+double loglog_slope(const std::vector<std::pair<double, double>>& xy) {
+  if (xy.size() < 2) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  for (const auto& [x, y] : xy) {
+    const double lx = std::log(x), ly = std::log(y);
+    sx += lx;
+    sy += ly;
+    sxx += lx * lx;
+    sxy += lx * ly;
+  }
+  const double n = static_cast<double>(xy.size());
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+}  // namespace
+
+std::string header_text(const Options& o, const std::filesystem::path& out, int runs) {
+  std::string load = first_line("/proc/loadavg", "");
+  load = load.substr(0, load.find(' ', load.find(' ', load.find(' ') + 1) + 1));
+  // Calibrated on a 2-core machine: about 0.06 s per run of the sweep on average (best of 3),
+  // 10 s of micro-benchmarks, 10 s (quick) or 40 s (--full) of scaling, 5 s of plots.
+  const double estimate = 0.06 * runs + (o.micro ? 10.0 : 0.0) +
+                          (o.scaling ? (o.full ? 40.0 : 10.0) : 0.0) + (o.plots ? 5.0 : 0.0);
+  std::ostringstream s;
+  s << "tumble_bench (" << (o.full ? "full" : "quick")
+    << " run): what tumble's rigid-body dynamics cost and the accuracy they buy\n"
+    << "  measures  (a) ns per call of the core assembly, (b) run time to reach an attitude error "
+       "on\n"
+    << "            problems with exact answers, (c) cost per step against the number of bodies\n"
+    << "  machine   " << first_line("/proc/cpuinfo", "model name") << ", "
+    << std::thread::hardware_concurrency() << " hardware threads, load " << load << "\n"
+    << "  build     " << compiler() << ", " << TUMBLE_BENCH_BUILD_TYPE << " ("
+    << TUMBLE_BENCH_CXX_FLAGS << "); SUNDIALS " << SUNDIALS_VERSION << ", Eigen "
+    << EIGEN_WORLD_VERSION << '.' << EIGEN_MAJOR_VERSION << '.' << EIGEN_MINOR_VERSION << "\n";
+  if (pinocchio_available()) {
+    s << "  peers     " << pinocchio_description() << "\n";
+  }
+  s << "  timing    " << (o.clock == TimeBase::wall ? "wall clock" : "thread CPU time")
+    << ", best of " << o.reps << " runs per setting; this run: about "
+    << fmt("%.0f", std::max(10.0, 10 * std::round(estimate / 10)))
+    << " s on an idle 2-core machine\n"
+    << "  results   " << out.string() << "\n";
+#ifndef NDEBUG
+  s << "  WARNING   assertions are on (no NDEBUG): configure with -DCMAKE_BUILD_TYPE=Release\n";
+#endif
+  return s.str();
+}
+
+std::string micro_table(const MicroTimes& ns) {
+  auto cell = [&](const std::string& name) {
+    const auto it = ns.find(name);
+    return lpad(it == ns.end() ? std::string("-") : fmt("%.1f", it->second), 9);
+  };
+  auto row = [&](const std::string& label, const std::string& c, const std::string& o,
+                 const std::string& lc, const std::string& lo) {
+    return "  " + pad(label, 34) + cell(c) + cell(o) + "   " + cell(lc) + cell(lo) + "\n";
+  };
+  std::ostringstream s;
+  s << "(a) per-call cost of the core assembly, qddot of one body: CPU ns per call, median of 3\n"
+    << "  " << pad("", 34) << lpad("wrench given", 18) << "   " << lpad("with 3 loads", 18) << "\n"
+    << "  " << pad("", 34) << lpad("centroid", 9) << lpad("offset", 9) << "   "
+    << lpad("centroid", 9) << lpad("offset", 9) << "\n";
+  const char* order[] = {"EulerParameters",
+                         "RodriguesParameters",
+                         "ModifiedRodriguesParameters",
+                         "RotationVector",
+                         "EulerXYZ",
+                         "EulerXZY",
+                         "EulerYXZ",
+                         "EulerYZX",
+                         "EulerZXY",
+                         "EulerZYX",
+                         "EulerXYX",
+                         "EulerXZX",
+                         "EulerYXY",
+                         "EulerYZY",
+                         "EulerZXZ",
+                         "EulerZYZ"};
+  for (const std::string p : order) {
+    if (ns.contains("qddot/" + p + "/centroid") || ns.contains("qddot_loads/" + p + "/centroid")) {
+      s << row("tumble " + p, "qddot/" + p + "/centroid", "qddot/" + p + "/offset",
+               "qddot_loads/" + p + "/centroid", "qddot_loads/" + p + "/offset");
+    }
+  }
+  s << row("hand-written EP (floor)", "hand_written/EulerParameters/centroid", "",
+           "hand_written_loads/EulerParameters/centroid", "");
+  for (const std::string p : order) {
+    if (ns.contains("dense_lu/" + p + "/centroid")) {
+      s << row("dense + LU, " + p, "", "", "dense_lu/" + p + "/centroid",
+               "dense_lu/" + p + "/offset");
+    }
+  }
+  bool peers = false;
+  for (const auto& [label, name] : std::vector<std::pair<std::string, std::string>>{
+           {"Pinocchio aba", "pinocchio_aba/"},
+           {"Pinocchio crba+nle+Cholesky", "pinocchio_crba_nle_solve/"},
+           {"MuJoCo mj_forward", "mujoco_forward/"}}) {
+    if (ns.contains(name + "centroid")) {
+      s << row(label, name + "centroid", name + "offset", "", "");
+      peers = true;
+    }
+  }
+  s << "  (3 loads: gravity, a point force, a moment; floor: the same equations written by hand;\n"
+       "   dense: the generic assembly and LU that tumble avoids"
+    << (peers ? ")\n" : "; Pinocchio, MuJoCo: not installed)\n");
+  return s.str();
+}
+
+std::string problem_table(const Problem& p, const std::vector<Row>& rows) {
+  // label -> scheme -> points, labels in the order they were run
+  std::vector<std::string> labels;
+  std::map<std::string, std::map<int, std::vector<Point>>> points;
+  for (const Row& r : rows) {
+    const std::string label = method_label(r.job);
+    if (!points.contains(label)) {
+      labels.push_back(label);
+    }
+    const int group = r.job.scheme == Scheme::bdf ? 1 : 0;  // RK4 in the first group
+    auto& list = points[label][group];
+    if (r.run.ok && std::isfinite(r.errors.max_attitude)) {
+      list.push_back({r.errors.max_attitude, r.run.seconds});
+    }
+  }
+  std::ostringstream s;
+  s << wrap(p.id + ": " + p.title, "  ");
+  if (!p.exact) {
+    s << wrap("  reference: " + p.reference_note, "    ");
+  }
+  for (const std::string& label : labels) {
+    std::string line = "  " + pad(label, 22);
+    for (int g = 0; g < 2; ++g) {
+      const auto it = points[label].find(g);
+      if (it == points[label].end()) {
+        line += std::string(4 * 8, ' ');
+        continue;
+      }
+      for (double e : kErrors) {
+        const auto t = time_at(it->second, e);
+        std::string cell = t && t->bound ? "<" : "";
+        cell += t ? duration(t->time, true) : std::string("-");
+        line += lpad(cell, 8);
+      }
+      double best = std::numeric_limits<double>::infinity();
+      for (const Point& pt : it->second) {
+        best = std::min(best, pt.error);
+      }
+      line += lpad(std::isfinite(best) ? sci(best) : std::string("failed"), 8);
+    }
+    s << line.substr(0, line.find_last_not_of(' ') + 1) << "\n";
+  }
+  return s.str();
+}
+
+std::string problem_table_header() {
+  const std::string bar(31, '-');
+  std::string s = pad("(b) work precision", 24) + " ";
+  s += bar.substr(0, 11) + " Adams " + bar.substr(0, 13) + " " + bar.substr(0, 13) + " BDF " +
+       bar.substr(0, 13) + "\n  " + pad("method", 22);
+  for (int g = 0; g < 2; ++g) {
+    for (const char* e : {"1e-3", "1e-6", "1e-9", "best"}) {
+      s += lpad(e, 8);
+    }
+  }
+  return s + "\n";
+}
+
+std::string problem_table_footer(TimeBase clock) {
+  return std::string("  (") + (clock == TimeBase::wall ? "wall" : "CPU") +
+         " time to reach a max attitude error of 1e-3, 1e-6, 1e-9 rad: on the runs faster than "
+         "any\n"
+         "   more accurate one, log(time) interpolated in log(error) between the two that bracket "
+         "it;\n"
+         "   '<': the cheapest run is more accurate; '-': not reached; best: the smallest error; "
+         "RK4:\n"
+         "   its step-size sweep, in the Adams columns; every run: work_precision_<problem>.csv)\n";
+}
+
+std::string scaling_table(const std::vector<ScalingRow>& rows) {
+  const std::vector<std::pair<std::string, std::string>> cols = {{"rhs", "rhs/body"},
+                                                                 {"bdf-dense", "dense LU"},
+                                                                 {"bdf-band", "band LU"},
+                                                                 {"bdf-band-dq", "band, DQ J"},
+                                                                 {"bdf-gmres", "GMRES"}};
+  std::set<int> sizes;
+  for (const ScalingRow& r : rows) {
+    sizes.insert(r.bodies);
+  }
+  auto find = [&](int n, const std::string& k) -> const ScalingRow* {
+    for (const ScalingRow& r : rows) {
+      if (r.bodies == n && r.what == k && r.ok) {
+        return &r;
+      }
+    }
+    return nullptr;
+  };
+  std::ostringstream s;
+  s << "(c) a chain of N bodies joined by spring-dampers: cost of a right-hand side per body, and\n"
+       "    of a BDF step (rtol 1e-6, atol 1e-8) per linear solver\n";
+  s << "  " << lpad("N", 6);
+  for (const auto& c : cols) {
+    s << lpad(c.second, 12);
+  }
+  s << "\n";
+  for (int n : sizes) {
+    s << "  " << lpad(std::to_string(n), 6);
+    for (const auto& c : cols) {
+      const ScalingRow* r = find(n, c.first);
+      s << lpad(r ? duration(c.first == "rhs" ? r->per_body : r->seconds) : "-", 12);
+    }
+    s << "\n";
+  }
+  // The slope of the cost per call (not per body) against N, over N >= 100 where the per-body
+  // work dominates CVODE's fixed per-step overhead, or over every N when fewer are that large.
+  s << "  " << lpad("slope", 6);
+  for (const auto& c : cols) {
+    std::vector<std::pair<double, double>> all, large;
+    for (int n : sizes) {
+      if (const ScalingRow* r = find(n, c.first)) {
+        all.emplace_back(n, r->seconds);
+        if (n >= 100) {
+          large.emplace_back(n, r->seconds);
+        }
+      }
+    }
+    const double slope = loglog_slope(large.size() >= 2 ? large : all);
+    s << lpad(std::isfinite(slope) ? fmt("%.2f", slope) : "-", 12);
+  }
+  s << "\n  (slope: log-log fit of the cost per call against N over N >= 100 (dense: every N it "
+       "ran);\n   1 = linear; 'DQ J': CVODE's difference-quotient Jacobian, else the scene's exact "
+       "one)\n";
+  return s.str();
+}
+
+}  // namespace tumble::bench

@@ -1,0 +1,184 @@
+// tumble_bench: the sweep. Which runs the work-precision study makes (every problem x method x
+// setting), how one is made and measured, the stiff top's reference integration, and the sizes
+// of the scaling study.
+//
+// A method is tumble with one orientation parameterization (work_precision_tumble.hpp) or a
+// reference run in the same run: the hand-written CVODE floor and fixed-step RK4
+// (work_precision_floors.cpp), Pinocchio's aba in CVODE when installed
+// (work_precision_pinocchio.cpp). CVODE methods sweep rtol = atol over kTolerances with Adams and
+// BDF; RK4 sweeps its step size.
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "work_precision_driver.hpp"
+#include "work_precision_format.hpp"
+
+namespace tumble::bench {
+
+const std::vector<double> kTolerances = {1e-3, 1e-4,  1e-5,  1e-6,  1e-7, 1e-8,
+                                         1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
+
+const char* family_name(Family f) {
+  switch (f) {
+    case Family::tumble:
+      return "tumble";
+    case Family::handwritten:
+      return "hand-written";
+    case Family::pinocchio:
+      return "pinocchio";
+    case Family::rk4:
+      return "rk4";
+  }
+  return "?";
+}
+
+std::string Job::method() const {
+  switch (family) {
+    case Family::tumble:
+      return "tumble " + param->name + " " + scheme_name(scheme);
+    case Family::handwritten:
+      return std::string("hand-written EP ") + scheme_name(scheme);
+    case Family::pinocchio:
+      return std::string("Pinocchio aba ") + scheme_name(scheme);
+    case Family::rk4:
+      return "RK4 fixed step";
+  }
+  return "?";
+}
+
+std::string Job::setting() const {
+  if (family == Family::rk4) {
+    const double dt = problem->times.front();
+    return "h=" + sci(dt / substeps);
+  }
+  return "tol=" + sci(tol);
+}
+
+namespace {
+
+/// The RK4 step counts per output interval for problem p: powers of two from 1 until the step
+/// times the largest rate |omega0| is below 1e-3 rad (where RK4's error is near the round-off
+/// floor on these problems).
+std::vector<int> rk4_substeps(const Problem& p) {
+  const double dt = p.times.front();
+  const double rate = p.omega0.norm();
+  std::vector<int> list;
+  for (int s = 1; s <= (1 << 16); s *= 2) {
+    list.push_back(s);
+    if (dt / s * rate < 1e-3) {
+      break;
+    }
+  }
+  return list;
+}
+
+}  // namespace
+
+std::vector<Parameterization> parameterizations(const Options& o) {
+  std::vector<Parameterization> params;
+  add_parameterizations_a(params);
+  add_parameterizations_b(params);
+  std::erase_if(params, [&](const Parameterization& p) { return !o.full && !p.quick; });
+  return params;
+}
+
+std::vector<Job> plan_jobs(const Options& o, const std::vector<Problem>& problems,
+                           const std::vector<Parameterization>& params) {
+  const std::vector<double>& tolerances = o.tolerances.empty() ? kTolerances : o.tolerances;
+  std::vector<Job> jobs;
+  for (const Problem& p : problems) {
+    for (const Parameterization& par : params) {
+      for (Scheme s : {Scheme::adams, Scheme::bdf}) {
+        for (double tol : tolerances) {
+          jobs.push_back({&p, Family::tumble, &par, s, tol, 0});
+        }
+      }
+    }
+    if (!p.exact) {
+      continue;  // the references below need a closed-form problem (no spring)
+    }
+    for (Scheme s : {Scheme::adams, Scheme::bdf}) {
+      for (double tol : tolerances) {
+        jobs.push_back({&p, Family::handwritten, nullptr, s, tol, 0});
+      }
+    }
+    if (pinocchio_available()) {
+      for (Scheme s : {Scheme::adams, Scheme::bdf}) {
+        for (double tol : tolerances) {
+          jobs.push_back({&p, Family::pinocchio, nullptr, s, tol, 0});
+        }
+      }
+    }
+    for (int sub : rk4_substeps(p)) {
+      jobs.push_back({&p, Family::rk4, nullptr, Scheme::rk4, 0, sub});
+    }
+  }
+  std::erase_if(jobs, [&](const Job& j) {
+    if (o.methods.empty()) {
+      return false;
+    }
+    const std::string m = j.method();
+    return std::none_of(o.methods.begin(), o.methods.end(),
+                        [&](const std::string& s) { return m.find(s) != std::string::npos; });
+  });
+  return jobs;
+}
+
+Row run_job(const Job& j, const Options& o, const Timing& timing) {
+  const Problem& p = *j.problem;
+  Row r{j, {}, {}};
+  switch (j.family) {
+    case Family::tumble:
+      r.run = j.param->run(p, {j.scheme, j.tol, o.exact_jacobian}, timing);
+      break;
+    case Family::handwritten:
+      r.run = run_handwritten(p, {j.scheme, j.tol}, timing);
+      break;
+    case Family::pinocchio:
+      r.run = run_pinocchio(p, {j.scheme, j.tol}, timing);
+      break;
+    case Family::rk4:
+      r.run = run_rk4(p, j.substeps, timing);
+      break;
+  }
+  r.errors = evaluate(p, r.run);
+  r.run.samples.clear();
+  r.run.samples.shrink_to_fit();
+  return r;
+}
+
+/// The stiff top has no closed form. Its reference integrates tumble's equations of the same
+/// body and loads in long double with fixed-step RK4 (h = 5 us, 200,000 steps over 1 s: far
+/// below both the spring's period, 6.3 ms, and the spin's, 42 ms), independent of CVODE and of
+/// double rounding; its own error is estimated by Richardson's rule against h = 10 us.
+/// (A CVODE run at rtol 1e-14 is no reference here: BDF and Adams at 1e-14 differ by 1e-9 rad.)
+void make_stiff_reference(Problem& p) {
+  constexpr double step = 5e-6;
+  const int substeps = std::max(1, static_cast<int>(std::lround(p.times.front() / step)));
+  p.reference = stiff_top_reference(p, substeps, p.reference_uncertainty);
+  p.reference_note = "long-double RK4 (tumble's equations, h = " + sci(p.times.front() / substeps) +
+                     " s), error estimate " + sci(p.reference_uncertainty) + " rad";
+}
+
+ScalingPlan scaling_plan(const Options& o) {
+  ScalingPlan plan;
+  if (o.full) {
+    plan.rhs_sizes = {1, 3, 10, 30, 100, 300, 1000, 3000, 10000};
+    plan.bdf_sizes = {1, 3, 10, 30, 100, 300, 1000, 3000, 10000};
+    plan.dense_limit = 200;
+    plan.bdf_sizes.insert(std::lower_bound(plan.bdf_sizes.begin(), plan.bdf_sizes.end(), 200), 200);
+  } else {
+    plan.rhs_sizes = {1, 3, 10, 30, 100, 300, 1000};
+    plan.bdf_sizes = {1, 3, 10, 30, 100, 300, 1000};
+    plan.dense_limit = 100;
+  }
+  plan.reps = o.reps;
+  plan.base = o.clock;
+  return plan;
+}
+
+}  // namespace tumble::bench
