@@ -231,7 +231,7 @@ std::vector<Sample> exact_samples(const Problem& p);
 struct CvodeSetting {
   Scheme scheme = Scheme::adams;
   double tol = 1e-6;
-  /// BDF: tumble's scenes give CVODE their exact Jacobian (Scene::jacobian); false: CVODE's
+  /// BDF: tumble's scenes give CVODE their exact Jacobian (tumble::jacobian); false: CVODE's
   /// difference quotients (tumble_bench --difference-quotients)
   bool exact_jacobian = true;
 };

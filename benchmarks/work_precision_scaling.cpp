@@ -2,7 +2,7 @@
 // centroids) joined end to end by spring-dampers (SpringDamperBetween), the first one hung from a
 // fixed point by a SpringDamper, so that every body carries exactly one spring whatever N is.
 // Measured:
-//  - the cost of one right-hand side (Scene::rhs) per body, for N = 1 ... 10,000: the scene loops
+//  - the cost of one right-hand side (tumble::rhs) per body, for N = 1 ... 10,000: the scene loops
 //    over bodies and loads with the types known at compile time, so this should be flat in N;
 //  - the cost of one BDF step (construction of the integrator and the first `bdf_steps` steps,
 //    divided by the steps) with CVODE's dense LU (an O(N^3) factorization), its band LU (the
@@ -10,7 +10,7 @@
 //    has half-bandwidths 2 * 14 - 1 = 27 whatever N is, which SceneIntegrator takes from
 //    Scene::half_bandwidth: an O(N) factorization), and matrix-free GMRES (difference-quotient
 //    J v products, with the scene's block-Jacobi preconditioner, one LU of I - gamma J_kk per
-//    body). Dense and band use the scene's exact Jacobian (Scene::jacobian, automatic
+//    body). Dense and band use the scene's exact Jacobian (tumble::jacobian, automatic
 //    differentiation, O(N)); the band LU is also run with CVODE's banded difference quotients
 //    ("bdf-band-dq", use_system_jacobian = false: 55 right-hand sides per Jacobian), the cost
 //    before the scene had a Jacobian. By difference quotients the dense Jacobian would cost N
@@ -67,15 +67,15 @@ ScalingRow measure_rhs(int n, const ScalingPlan& plan) {
   row.what = "rhs";
   Chain chain;
   build_chain(chain, n);
-  chain.prepare();
-  const Eigen::VectorXd y = chain.initial_state();
-  Eigen::VectorXd ydot(y.size());
+  SceneWorkspace ws(chain);
+  const SceneState& y = chain.initial_state();
+  Eigen::VectorXd ydot(y.y.size());
   // Calls per timed batch: about plan.rhs_seconds worth, from a short calibration.
   long calls = 1;
   for (;;) {
     const Stopwatch watch;
     for (long i = 0; i < calls; ++i) {
-      chain.rhs(0.0, y, ydot);
+      rhs(chain, ws, 0.0, y, ydot);
     }
     const double s = watch.elapsed(plan.base);
     if (s > 0.2 * plan.rhs_seconds || calls > (1L << 40)) {
@@ -88,7 +88,7 @@ ScalingRow measure_rhs(int n, const ScalingPlan& plan) {
   for (int r = 0; r < plan.rhs_batches; ++r) {
     const Stopwatch watch;
     for (long i = 0; i < calls; ++i) {
-      chain.rhs(0.0, y, ydot);
+      rhs(chain, ws, 0.0, y, ydot);
     }
     best = std::min(best, watch.elapsed(plan.base) / static_cast<double>(calls));
   }

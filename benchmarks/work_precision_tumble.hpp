@@ -42,20 +42,20 @@ inline MassProperties<> mass_properties(const Problem& p) {
 
 /// Times `reps` runs of: construct the SceneIntegrator, integrate over the output times and
 /// record a Sample at each. `build(scene)` adds the body and its loads and returns its id; it
-/// runs before the clock starts (a fresh scene each time: a run moves the scene's chart bases).
+/// runs once, before the clock starts (the scene is only read by the runs).
 template <class SceneT, class Body, class Build>
 Run run_scene(const Problem& p, const CvodeSetting& c, const Timing& timing, Build build) {
   Run run;
   run.samples.resize(p.times.size());
   std::vector<double> times;
   try {
+    SceneT scene;
+    const BodyId<Body> id = build(scene);
     do {
-      SceneT scene;
-      const BodyId<Body> id = build(scene);
       const Stopwatch watch;
       SceneIntegrator integrator(scene, 0.0, scene_options(c));
       std::size_t k = 0;
-      integrator.integrate(p.times, [&](double, auto y) {
+      integrator.integrate(p.times, [&](double, const SceneState& y) {
         Sample& s = run.samples[k++];
         s.rotation = tumble::rotation(scene, id, y);
         s.omega = tumble::omega(scene, id, y);

@@ -326,9 +326,12 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
   static void check_initial_state(const InitialState& s, int id) {
     auto fail = [id](const char* field, const auto& v) {
       std::ostringstream os;
-      os << "tumble::Scene::add: body " << id << ": the initial " << field
-         << " is not finite: " << v.transpose().format(Eigen::IOFormat(10, 0, ", ", "; ", "", "",
-                                                                       "(", ")"));
+      os.precision(10);
+      os << "tumble::Scene::add: body " << id << ": the initial " << field << " is not finite: (";
+      for (Eigen::Index i = 0; i < v.size(); ++i) {
+        os << (i > 0 ? ", " : "") << v(i);
+      }
+      os << ")";
       throw std::invalid_argument(os.str());
     };
     if (!detail::all_finite(s.position)) {
