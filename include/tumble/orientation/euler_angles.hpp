@@ -2,7 +2,7 @@
 // Euler angles: the 12 intrinsic (body-fixed) rotation sequences, 6 Tait-Bryan (three different
 // axes) and 6 proper Euler (first axis repeated).
 //
-// Reference: ../shared/reference/rigid-body-chapter.md (the "reference chapter"), Sec. 1.1:
+// Reference: Chapter 1, "Rigid body" (the "reference chapter"), Sec. 1.1:
 // R (Eq. 1.1), G with omega = G thetadot (Eq. 1.5), the product Gdot thetadot (Eq. 1.10).
 //
 // Conventions (docs/conventions.md). Axes are numbered 0 = x, 1 = y, 2 = z; R_a(t) is the active
