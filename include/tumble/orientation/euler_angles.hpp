@@ -36,8 +36,9 @@
 //   proper (EulerXYX, EulerXZX, EulerYXY, EulerYZY, EulerZXZ, EulerZYZ):
 //       t2 = 0 or pi (mod 2 pi).
 // singularity_distance() measures the distance to that set; thetadot() and thetaddot() divide by
-// cos t2 (sin t2), are large but accurate near it and not finite exactly at it. A simulation
-// re-centers the chart before it gets there (see DESIGN.md).
+// cos t2 (sin t2), are large but accurate near it and not finite exactly at it. A scene never
+// gets there: it re-centers the chart, R = R0 R(theta), 45 deg before (include/tumble/scene/
+// chart.hpp: charts are re-centered before the singularity, found by CVODE's root finding).
 //
 // \warning The sequences are INTRINSIC: EulerAngles<2, 1, 0> (EulerZYX) is R_z(t1) R_y(t2) R_x(t3).
 //          A library or paper that calls the same product "XYZ" is using the extrinsic reading;
