@@ -38,7 +38,8 @@ enum class CvodeLinearSolver {
 /// Side of the system's preconditioner in GMRES (ignored when the system has none).
 enum class CvodePreconditioning { none, left, right };
 
-/// Options of a Cvode integrator. Defaults are CVODE's own, except the method (BDF).
+/// Options of a Cvode integrator. Defaults are CVODE's own, except the method (BDF) and the
+/// per-call step limit (none; CVODE's is 500).
 /// Every option is validated when the integrator is constructed, before anything is integrated;
 /// a bad one throws std::invalid_argument naming it.
 struct CvodeOptions {
@@ -46,8 +47,19 @@ struct CvodeOptions {
   double rtol = 1e-6;  ///< relative tolerance, > 0
   /// absolute tolerance: one value > 0, or one per component (all > 0)
   std::variant<double, Eigen::VectorXd> atol = 1e-8;
-  int max_order = 0;          ///< 0: the method's maximum (Adams 12, BDF 5)
-  long max_steps = 500;       ///< internal steps allowed per call of CVODE (CVodeSetMaxNumSteps)
+  int max_order = 0;  ///< 0: the method's maximum (Adams 12, BDF 5)
+  /// Internal steps allowed in one call of CVode(), i.e. in one advance() or between two output
+  /// times of integrate() (CVodeSetMaxNumSteps); more throws IntegrationError CV_TOO_MUCH_WORK
+  /// naming this limit. 0 (the default): no limit, however long the interval. Without a limit an
+  /// integration still ends: one that cannot succeed stops on CVODE's error-test or convergence
+  /// failures, and one that stalls (steps at the rounding level of t) is stopped by tumble with
+  /// CV_TOO_MUCH_WORK. There is no total budget: set this to bound the work of one call, e.g. of
+  /// Adams on a stiff problem, which progresses but with tiny steps.
+  long max_steps_per_call = 0;
+  /// The former name of max_steps_per_call, kept so that existing code compiles; prefer
+  /// max_steps_per_call. When set it must be > 0 and is the per-call limit; setting both to
+  /// different limits is an error.
+  std::optional<long> max_steps;
   double initial_step = 0.0;  ///< 0: estimated by CVODE
   double min_step = 0.0;
   double max_step = std::numeric_limits<double>::infinity();
@@ -142,8 +154,20 @@ inline void validate(const CvodeOptions& o, int n, double t0) {
          (o.method == CvodeMethod::adams ? "Adams" : "BDF") + ", or 0 for the maximum (got " +
          std::to_string(o.max_order) + ")");
   }
-  if (o.max_steps <= 0) {
-    fail("'max_steps' must be > 0 (got " + std::to_string(o.max_steps) + ")");
+  if (o.max_steps_per_call < 0) {
+    fail("'max_steps_per_call' must be >= 0, 0 for no limit (got " +
+         std::to_string(o.max_steps_per_call) + ")");
+  }
+  if (o.max_steps) {
+    if (*o.max_steps <= 0) {
+      fail("'max_steps' must be > 0 (got " + std::to_string(*o.max_steps) +
+           "); for no limit leave it unset and 'max_steps_per_call' = 0");
+    }
+    if (o.max_steps_per_call != 0 && o.max_steps_per_call != *o.max_steps) {
+      fail("'max_steps' (" + std::to_string(*o.max_steps) + ") and 'max_steps_per_call' (" +
+           std::to_string(o.max_steps_per_call) +
+           ") disagree; set only 'max_steps_per_call' (max_steps is its former name)");
+    }
   }
   if (!(std::isfinite(o.initial_step) && o.initial_step >= 0.0)) {
     fail("'initial_step' must be finite and >= 0 (got " + num(o.initial_step) + ")");
@@ -220,5 +244,15 @@ inline void validate(const CvodeOptions& o, int n, double t0) {
     }
   }
 }
+
+namespace detail {
+
+/// The per-call step limit the options ask for (max_steps_per_call, or its former name
+/// max_steps), 0 for none.
+[[nodiscard]] inline long step_limit_per_call(const CvodeOptions& o) noexcept {
+  return o.max_steps_per_call > 0 ? o.max_steps_per_call : o.max_steps.value_or(0);
+}
+
+}  // namespace detail
 
 }  // namespace tumble

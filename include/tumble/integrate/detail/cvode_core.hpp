@@ -171,6 +171,9 @@ template <class System> class CvodeCore {
   }
 
  private:
+  /// Steps per call of CVode() when the options set no per-call limit (see call_cvode()).
+  static constexpr long kStepChunk = 10000;
+
   // ---- views of SUNDIALS vectors -----------------------------------------------------------
   [[nodiscard]] ConstVectorMap cview(N_Vector v) const noexcept {
     return ConstVectorMap(N_VGetArrayPointer(v), static_cast<Eigen::Index>(n_));
@@ -223,7 +226,8 @@ template <class System> class CvodeCore {
     if (options_.max_order > 0) {
       check(CVodeSetMaxOrd(mem, options_.max_order), "CVodeSetMaxOrd");
     }
-    check(CVodeSetMaxNumSteps(mem, options_.max_steps), "CVodeSetMaxNumSteps");
+    const long limit = step_limit_per_call(options_);
+    check(CVodeSetMaxNumSteps(mem, limit > 0 ? limit : kStepChunk), "CVodeSetMaxNumSteps");
     if (options_.initial_step > 0.0) {
       check(CVodeSetInitStep(mem, options_.initial_step), "CVodeSetInitStep");
     }
@@ -339,19 +343,38 @@ template <class System> class CvodeCore {
   }
 
   /// One call of CVode(); throws IntegrationError on a failure flag.
+  ///
+  /// Without a per-call step limit, CVODE still runs with one, kStepChunk, and is called again
+  /// when it returns CV_TOO_MUCH_WORK (its state is intact then; the next call continues the
+  /// same step sequence). Disabling CVODE's limit (CVodeSetMaxNumSteps < 0) would let it loop
+  /// for ever when its step falls to the rounding level of t (t + h == t: CVODE only warns); the
+  /// chunks let tumble see that and stop with an IntegrationError instead.
   int call_cvode(double tout, int task) {
     report_.clear();
-    errors_.clear();
-    sun_real reached = t_;
-    const int flag = CVode(mem_.get(), tout, y_.get(), &reached, task);
-    segment_started_ = true;
-    if (std::isfinite(reached)) {
-      t_ = reached;  // on failure CVODE returns the last time reached and the state there
+    for (;;) {
+      errors_.clear();
+      const double before = t_;
+      sun_real reached = t_;
+      const int flag = CVode(mem_.get(), tout, y_.get(), &reached, task);
+      segment_started_ = true;
+      if (std::isfinite(reached)) {
+        t_ = reached;  // on failure CVODE returns the last time reached and the state there
+      }
+      if (flag == CV_TOO_MUCH_WORK && step_limit_per_call(options_) == 0) {
+        // kStepChunk steps moved t by at most a few units in its last place each: CVODE's step
+        // is at the rounding level of t and the integration cannot reach tout.
+        const double rounding =
+            4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(before), std::abs(t_));
+        if (std::abs(t_ - before) <= static_cast<double>(kStepChunk) * rounding) {
+          throw stalled(before);
+        }
+        continue;
+      }
+      if (flag < 0) {
+        throw failure(flag);
+      }
+      return flag;
     }
-    if (flag < 0) {
-      throw failure(flag);
-    }
-    return flag;
   }
 
   /// Events and the system's step action after CVode() returned successfully.
@@ -386,25 +409,14 @@ template <class System> class CvodeCore {
   }
 
   IntegrationError failure(int flag) const {
-    const std::string name = flag_name(flag);
-    std::string what = "tumble::Cvode: CVODE failed with " + name + " at t = " + format_number(t_) +
-                       ": " + flag_cause(flag);
-    if (flag == CV_TOO_MUCH_WORK) {
-      what += " (max_steps = " + std::to_string(options_.max_steps) + ")";
-    }
-    if (report_.exception) {
-      what += "; " + std::string(report_.exception_where) +
-              " threw at t = " + format_number(report_.exception_time) + ": " +
-              exception_message(report_.exception);
-    } else if (report_.has_recoverable) {
-      what += "; last recoverable failure: " + std::string(report_.recoverable_where) +
-              " at t = " + format_number(report_.recoverable_time) + ": " +
-              report_.recoverable_message.data();
-    }
-    if (errors_.has_message) {
-      what += " [" + std::string(errors_.message.data()) + "]";
-    }
-    return IntegrationError(what, flag, name, t_, report_.exception);
+    return cvode_failure(flag, t_, options_, report_, errors_);
+  }
+
+  /// The integration made no progress in time over kStepChunk steps (see call_cvode()).
+  IntegrationError stalled(double before) const {
+    sun_real h = 0.0;
+    (void)CVodeGetCurrentStep(mem_.get(), &h);
+    return stalled_failure(before, t_, h, kStepChunk, report_);
   }
 
   /// Adds CVODE's counters of the current segment (since the last (re)initialization) to s.

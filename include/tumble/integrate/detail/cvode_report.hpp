@@ -1,8 +1,9 @@
 #pragma once
 // What tumble::Cvode's core reports, kept apart from its machinery: CallbackReport (what a
-// callback failed with, recorded without allocating inside C code), the formatting of numbers and
-// exceptions for IntegrationError's message, and add_counters(), which reads CVODE's counters of
-// one integration segment (CVodeGet*, "Optional output functions" of the CVODE user guide) into
+// callback failed with, recorded without allocating inside C code), the IntegrationError built
+// from a CVODE failure flag or from a stalled integration (flag, cause in words, step limit,
+// callback report, CVODE's message), and add_counters(), which reads CVODE's counters of one
+// integration segment (CVodeGet*, "Optional output functions" of the CVODE user guide) into
 // CvodeStatistics.
 
 #include <array>
@@ -14,7 +15,9 @@
 #include <cvode/cvode_ls.h>
 #include <cvode/cvode_proj.h>
 
+#include "tumble/integrate/detail/cvode_flags.hpp"
 #include "tumble/integrate/detail/sundials.hpp"
+#include "tumble/integrate/errors.hpp"
 #include "tumble/integrate/options.hpp"
 
 namespace tumble::detail {
@@ -58,6 +61,54 @@ inline std::string exception_message(const std::exception_ptr& e) {
   } catch (...) {
     return "an exception not derived from std::exception";
   }
+}
+
+/// "; <what a callback reported>", or "" when it reported nothing.
+inline std::string callback_note(const CallbackReport& r) {
+  if (r.exception) {
+    return "; " + std::string(r.exception_where) +
+           " threw at t = " + format_number(r.exception_time) + ": " +
+           exception_message(r.exception);
+  }
+  if (r.has_recoverable) {
+    return "; last recoverable failure: " + std::string(r.recoverable_where) +
+           " at t = " + format_number(r.recoverable_time) + ": " + r.recoverable_message.data();
+  }
+  return "";
+}
+
+/// The IntegrationError for a failure flag of CVode() at time t: the flag, its cause in words,
+/// the step limit for CV_TOO_MUCH_WORK, what a callback reported, CVODE's own message.
+inline IntegrationError cvode_failure(int flag, double t, const CvodeOptions& o,
+                                      const CallbackReport& r, const ErrorCapture& e) {
+  const std::string name = flag_name(flag);
+  std::string what = "tumble::Cvode: CVODE failed with " + name + " at t = " + format_number(t) +
+                     ": " + flag_cause(flag);
+  if (flag == CV_TOO_MUCH_WORK) {
+    // Name the option the user set: the former name max_steps only when it alone was set.
+    what += o.max_steps_per_call == 0 && o.max_steps ? " (max_steps = " : " (max_steps_per_call = ";
+    what += std::to_string(step_limit_per_call(o)) + ")";
+  }
+  what += callback_note(r);
+  if (e.has_message) {
+    what += " [" + std::string(e.message.data()) + "]";
+  }
+  return IntegrationError(what, flag, name, t, r.exception);
+}
+
+/// The IntegrationError (CV_TOO_MUCH_WORK) for an integration without a per-call step limit
+/// whose last `steps` steps, of size about h, moved t only from `before` to t.
+inline IntegrationError stalled_failure(double before, double t, double h, long steps,
+                                        const CallbackReport& r) {
+  std::string what =
+      "tumble::Cvode: the integration stalled at t = " + format_number(t) + ": " +
+      std::to_string(steps) + " internal steps moved t from " + format_number(before) + " by " +
+      format_number(t - before) + " (step h = " + format_number(h) +
+      ", at the rounding level of t), so the requested time cannot be reached; the solution "
+      "changes too fast for the precision of t (shift the time origin), or the system has a "
+      "singularity here";
+  what += callback_note(r);
+  return IntegrationError(what, CV_TOO_MUCH_WORK, flag_name(CV_TOO_MUCH_WORK), t, r.exception);
 }
 
 /// Adds CVODE's counters of the current segment (since the last (re)initialization) to s. The
