@@ -48,11 +48,8 @@ class SpringDamperBetween {
   /// Elastic energy 1/2 k (L - L0)^2.
   template <class S>
   [[nodiscard]] S potential_energy(const KinematicsView<S>& a, const KinematicsView<S>& b) const {
-    using std::sqrt;
-    const Vector3<S> d =
-        b.point_position(detail::cast<S>(point_b_)) - a.point_position(detail::cast<S>(point_a_));
-    const S stretch = sqrt(d.squaredNorm()) - S(sd_.rest_length);
-    return S(0.5) * S(sd_.stiffness) * stretch * stretch;
+    return detail::spring_potential_energy<S>(sd_, a.point_position(detail::cast<S>(point_a_)),
+                                              b.point_position(detail::cast<S>(point_b_)));
   }
 
   [[nodiscard]] const SpringDamperParameters& parameters() const { return sd_; }
