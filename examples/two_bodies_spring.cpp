@@ -34,7 +34,6 @@ int main() {
   options.cvode.method = CvodeMethod::adams;
   options.cvode.rtol = 1e-10;
   options.cvode.atol = 1e-12;
-  options.cvode.max_steps = 100000;
   SceneIntegrator integrator(scene, 0.0, options);
   const Eigen::VectorXd y0 = scene.initial_state();
   const Eigen::Vector3d p0 = scene.linear_momentum(y0), h0 = scene.angular_momentum(y0);

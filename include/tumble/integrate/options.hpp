@@ -5,7 +5,7 @@
 // (CvodeStatistics), and validate(), which checks every option that does not depend on the system
 // before anything is integrated and names a bad one in a std::invalid_argument.
 //
-// Each option maps to one CVODE setter, named beside it; defaults are CVODE's own unless the
+// Most options map to one CVODE setter, named beside it; defaults are CVODE's own unless the
 // comment says otherwise. Source: the CVODE user guide (SUNDIALS 6.4 / 7.x), "Optional input
 // functions" and "Optional output functions".
 
