@@ -348,7 +348,9 @@ template <class System> class CvodeCore {
   /// when it returns CV_TOO_MUCH_WORK (its state is intact then; the next call continues the
   /// same step sequence). Disabling CVODE's limit (CVodeSetMaxNumSteps < 0) would let it loop
   /// for ever when its step falls to the rounding level of t (t + h == t: CVODE only warns); the
-  /// chunks let tumble see that and stop with an IntegrationError instead.
+  /// chunks let tumble see that and stop with an IntegrationError instead. Each chunk ends with
+  /// a CVODE error message, captured; SUNDIALS 7 formats it on the heap, so a call of more than
+  /// kStepChunk steps is the one place where advance() may allocate there.
   int call_cvode(double tout, int task) {
     report_.clear();
     for (;;) {
