@@ -34,7 +34,6 @@ int main() {
   options.cvode.method = CvodeMethod::bdf;
   options.cvode.rtol = 1e-8;
   options.cvode.atol = 1e-10;
-  options.cvode.max_steps = 200000;
   SceneIntegrator integrator(scene, 0.0, options);
 
   // Precession: the azimuth of the symmetry axis R e3, unwrapped.

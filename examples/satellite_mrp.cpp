@@ -43,7 +43,6 @@ int main() {
   options.cvode.method = CvodeMethod::adams;
   options.cvode.rtol = 1e-9;
   options.cvode.atol = 1e-11;
-  options.cvode.max_steps = 100000;
   SceneIntegrator integrator(scene, 0.0, options);
   std::printf("   t (s)   error (deg)   |omega| (rad/s)   |sigma|\n");
   for (double t : {0.0, 10.0, 20.0, 40.0, 60.0, 90.0, 120.0}) {

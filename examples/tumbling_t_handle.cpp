@@ -50,7 +50,6 @@ int main(int argc, char** argv) {
   options.cvode.method = CvodeMethod::adams;
   options.cvode.rtol = 1e-10;
   options.cvode.atol = 1e-12;
-  options.cvode.max_steps = 100000;
   SceneIntegrator integrator(scene, 0.0, options);
 
   const double t_end = 10.0;

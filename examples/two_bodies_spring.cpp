@@ -34,7 +34,6 @@ int main() {
   options.cvode.method = CvodeMethod::adams;
   options.cvode.rtol = 1e-10;
   options.cvode.atol = 1e-12;
-  options.cvode.max_steps = 100000;
   SceneIntegrator integrator(scene, 0.0, options);
   const tumble::SceneState& y0 = scene.initial_state();
   const Eigen::Vector3d p0 = tumble::linear_momentum(scene, y0), h0 = tumble::angular_momentum(scene, y0);

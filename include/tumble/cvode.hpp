@@ -2,13 +2,17 @@
 // tumble's integration module: everything that needs SUNDIALS CVODE (link tumble::cvode).
 //
 //   tumble::Cvode<System>      the CVODE integrator of y' = f(t, y) (integrate/cvode.hpp)
+//   tumble::CvodeSystem        what a system provides, and its optional members
+//                              (integrate/system.hpp, which needs no SUNDIALS)
 //   tumble::CvodeOptions       method, tolerances, step and solver options, projection
-//   tumble::CvodeStatistics    counters
+//   tumble::CvodeStatistics    counters (both in integrate/options.hpp, which needs no SUNDIALS)
 //   tumble::SceneIntegrator    a Scene integrated with CVODE (charts, projection, events)
 //   tumble::IntegrationError   CVODE failure; tumble::RecoverableError for callbacks
 //                              (integrate/errors.hpp, which needs no SUNDIALS)
 
 #include "tumble/integrate/cvode.hpp"
 #include "tumble/integrate/errors.hpp"
+#include "tumble/integrate/options.hpp"
 #include "tumble/integrate/scene_integrator.hpp"
+#include "tumble/integrate/system.hpp"
 #include "tumble/tumble.hpp"

@@ -8,7 +8,7 @@
 //   - M symmetric positive definite (three parameters) or semidefinite with null vector [0; p]
 //     (Euler parameters);
 //   - momenta and kinetic energy against the sums over the point-mass model.
-// Reference: ../shared/reference/rigid-body-chapter.md.
+// Reference: the reference chapter, Chapter 1, "Rigid body".
 
 #include <algorithm>
 #include <cmath>

@@ -62,6 +62,26 @@ struct OscillatorWithJacobian : Oscillator {
   }
 };
 
+/// Euler's equations of a torque-free rigid body, y = omega (body frame), principal inertia
+/// (1, 2, 3): I1 w1' = (I2 - I3) w2 w3 and cyclic. Started near the intermediate axis it tumbles
+/// (flips over and back again); 2T = omega . I omega and |L|^2 = |I omega|^2 are conserved.
+struct TumblingBody {
+  Eigen::Vector3d inertia{1.0, 2.0, 3.0};
+  [[nodiscard]] int size() const { return 3; }
+  void rhs(double, ConstVectorMap w, VectorMap wdot) const {
+    const Eigen::Vector3d& i = inertia;
+    wdot[0] = (i[1] - i[2]) / i[0] * w[1] * w[2];
+    wdot[1] = (i[2] - i[0]) / i[1] * w[2] * w[0];
+    wdot[2] = (i[0] - i[1]) / i[2] * w[0] * w[1];
+  }
+  [[nodiscard]] double energy(const Eigen::Vector3d& w) const {
+    return w.dot(inertia.cwiseProduct(w));
+  }
+  [[nodiscard]] double momentum(const Eigen::Vector3d& w) const {
+    return inertia.cwiseProduct(w).squaredNorm();
+  }
+};
+
 /// y' = -k y.
 struct Decay {
   double k = 2.0;
@@ -296,7 +316,7 @@ CvodeOptions tolerances(CvodeMethod method, double tol) {
 /// Largest |y(t) - (cos t, -sin t)| over outputs every 0.5 up to 10, and the steps taken.
 std::pair<double, long> oscillator_error(CvodeMethod method, double tol) {
   CvodeOptions o = tolerances(method, tol);
-  o.max_steps = 100000;
+  o.max_steps_per_call = 100000;
   Cvode cvode(Oscillator{}, 0.0, Eigen::Vector2d(1.0, 0.0), o);
   std::vector<double> times;
   for (int k = 1; k <= 20; ++k) {
@@ -370,7 +390,7 @@ TEST_CASE("stiff linear system: BDF needs far fewer steps than Adams", "[integra
   const Eigen::Vector2d y_bdf = implicit.advance(t_end);
 
   CvodeOptions adams = tolerances(CvodeMethod::adams, 1e-8);
-  adams.max_steps = 1000000;
+  adams.max_steps_per_call = 1000000;
   Cvode explicit_(system, 0.0, y0, adams);
   const Eigen::Vector2d y_adams = explicit_.advance(t_end);
 
@@ -393,7 +413,7 @@ TEST_CASE("Robertson: analytic and difference-quotient Jacobians agree", "[integ
   o.method = CvodeMethod::bdf;
   o.rtol = 1e-6;
   o.atol = Eigen::Vector3d(1e-10, 1e-14, 1e-8);  // per component, as in cvRoberts_dns
-  o.max_steps = 5000;
+  o.max_steps_per_call = 5000;
   const Eigen::Vector3d y0(1.0, 0.0, 0.0);
 
   Cvode analytic(RobertsonWithJacobian{}, 0.0, y0, o);
@@ -442,7 +462,7 @@ TEST_CASE("dense, band and GMRES linear solvers agree with the exact heat soluti
     o.linear_solver = solver;
     o.upper_bandwidth = 1;
     o.lower_bandwidth = 1;
-    o.max_steps = 5000;
+    o.max_steps_per_call = 5000;
     Cvode cvode(std::move(system), 0.0, heat.initial(), o);
     const Eigen::VectorXd u = cvode.advance(t_end);
     stats = cvode.statistics();
@@ -473,7 +493,7 @@ TEST_CASE("bouncing ball: impact times match the closed form", "[integrate][cvod
     ball.impacts = &impacts;
     const double h = 10.0, t_end = 8.0;
     CvodeOptions o = tolerances(method, 1e-10);
-    o.max_steps = 10000;
+    o.max_steps_per_call = 10000;
     Cvode cvode(ball, 0.0, Eigen::Vector2d(h, 0.0), o);
     cvode.advance(t_end);
 
@@ -550,7 +570,7 @@ TEST_CASE("projection keeps a rotating unit vector on the sphere", "[integrate][
   const RotatingUnitVector system;
   const Eigen::Vector3d y0 = Eigen::Vector3d(1.0, 2.0, -0.5).normalized();
   CvodeOptions o = tolerances(CvodeMethod::bdf, 1e-5);
-  o.max_steps = 100000;
+  o.max_steps_per_call = 100000;
   const double t_end = 100.0;
 
   CvodeOptions with = o;
@@ -618,7 +638,13 @@ TEST_CASE("bad options throw std::invalid_argument naming them, before integrati
           "'max_order'");
   rejects(with([](CvodeOptions& o) { o.max_order = 6; }), "'max_order'");  // BDF
   rejects(with([](CvodeOptions& o) { o.max_order = -1; }), "'max_order'");
-  rejects(with([](CvodeOptions& o) { o.max_steps = 0; }), "'max_steps'");
+  rejects(with([](CvodeOptions& o) { o.max_steps_per_call = -1; }), "'max_steps_per_call'");
+  rejects(with([](CvodeOptions& o) { o.max_steps = 0; }), "'max_steps'");  // the former name
+  rejects(with([](CvodeOptions& o) {
+            o.max_steps = 100;
+            o.max_steps_per_call = 200;
+          }),
+          "disagree");
   rejects(with([](CvodeOptions& o) { o.initial_step = -0.1; }), "'initial_step'");
   rejects(with([](CvodeOptions& o) { o.min_step = -0.1; }), "'min_step'");
   rejects(with([](CvodeOptions& o) { o.max_step = 0.0; }), "'max_step'");
@@ -691,11 +717,19 @@ TEST_CASE("bad options throw std::invalid_argument naming them, before integrati
   CHECK_NOTHROW(Cvode(Oscillator{}, 0.0, y0, adams_band));
 }
 
-TEST_CASE("too much work: IntegrationError names CV_TOO_MUCH_WORK and the time",
+TEST_CASE("too much work: IntegrationError names CV_TOO_MUCH_WORK, the limit and the time",
           "[integrate][cvode]") {
   const StiffLinear system;
   CvodeOptions o = tolerances(CvodeMethod::adams, 1e-8);
-  o.max_steps = 200;
+  std::string limit;
+  SECTION("max_steps_per_call") {
+    o.max_steps_per_call = 200;
+    limit = "(max_steps_per_call = 200)";
+  }
+  SECTION("its former name, max_steps") {
+    o.max_steps = 200;
+    limit = "(max_steps = 200)";
+  }
   Cvode cvode(system, 0.0, system.exact(0.0, 1.0, 0.5), o);
   try {
     cvode.advance(10.0);
@@ -706,12 +740,67 @@ TEST_CASE("too much work: IntegrationError names CV_TOO_MUCH_WORK and the time",
     CHECK(e.flag() == CV_TOO_MUCH_WORK);
     CHECK(e.flag_name() == "CV_TOO_MUCH_WORK");
     CHECK(what.find("CV_TOO_MUCH_WORK") != std::string::npos);
-    CHECK(what.find("max_steps") != std::string::npos);
+    CHECK(what.find(limit) != std::string::npos);
     CHECK(what.find("bdf") != std::string::npos);
+    CHECK(cvode.statistics().steps == 200);
     CHECK(e.time() > 0.0);
     CHECK(e.time() < 10.0);
     CHECK(e.time() == cvode.time());
     CHECK(what.find("t = " + tumble::detail::format_number(e.time())) != std::string::npos);
+    CHECK(!e.cause());
+  }
+}
+
+TEST_CASE("no per-call step limit by default: one long advance of a tumbling body",
+          "[integrate][cvode]") {
+  const TumblingBody body;
+  const Eigen::Vector3d w0(0.05, 2.0, 0.05);  // near the intermediate axis
+  CvodeOptions o = tolerances(CvodeMethod::bdf, 1e-10);
+  CHECK(o.max_steps_per_call == 0);
+  CHECK(!o.max_steps);
+  SECTION("the default: the whole interval in one call") {
+    Cvode cvode(body, 0.0, w0, o);
+    const Eigen::Vector3d w = cvode.advance(50.0);
+    // CVODE's own default limit (500 steps per call) stopped this run part of the way.
+    CHECK(cvode.statistics().steps > 500);
+    CHECK(cvode.time() == 50.0);
+    CHECK(std::abs(body.energy(w) / body.energy(w0) - 1.0) < 1e-6);
+    CHECK(std::abs(body.momentum(w) / body.momentum(w0) - 1.0) < 1e-6);
+  }
+  SECTION("an explicit limit stops it with an IntegrationError naming the limit") {
+    o.max_steps_per_call = 100;
+    Cvode cvode(body, 0.0, w0, o);
+    try {
+      cvode.advance(50.0);
+      FAIL("no exception");
+    } catch (const IntegrationError& e) {
+      INFO(e.what());
+      CHECK(e.flag_name() == "CV_TOO_MUCH_WORK");
+      CHECK(std::string(e.what()).find("(max_steps_per_call = 100)") != std::string::npos);
+      CHECK(e.time() > 0.0);
+      CHECK(e.time() < 50.0);
+      CHECK(cvode.statistics().steps == 100);
+    }
+  }
+}
+
+TEST_CASE("without a step limit, an integration that cannot progress stops, not hangs",
+          "[integrate][cvode]") {
+  // At t = 1e12 a unit of the last place of t is 1.2e-4, while the oscillator (period 6e-4)
+  // needs steps of about 1e-5: t + h == t, CVODE takes steps that never move t (it only warns).
+  const Oscillator fast{.omega = 1e4};
+  const double t0 = 1e12;
+  Cvode cvode(fast, t0, Eigen::Vector2d(1.0, 0.0), tolerances(CvodeMethod::adams, 1e-8));
+  try {
+    cvode.advance(t0 + 1.0);
+    FAIL("no exception");
+  } catch (const IntegrationError& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK(e.flag_name() == "CV_TOO_MUCH_WORK");
+    CHECK(what.find("stalled") != std::string::npos);
+    CHECK(what.find("rounding level of t") != std::string::npos);
+    CHECK(e.time() == t0);
     CHECK(!e.cause());
   }
 }
@@ -943,7 +1032,7 @@ TEST_CASE("a system can be held by reference", "[integrate][cvode]") {
 TEST_CASE("no heap allocation during advance() once set up", "[integrate][cvode]") {
   SECTION("BDF, dense, analytic Jacobian") {
     CvodeOptions o = tolerances(CvodeMethod::bdf, 1e-8);
-    o.max_steps = 100000;
+    o.max_steps_per_call = 100000;
     Cvode cvode(OscillatorWithJacobian{}, 0.0, Eigen::Vector2d(1.0, 0.0), o);
     cvode.advance(0.1);  // CVODE finishes its own setup in the first call
     AllocationCounter counter;
@@ -966,7 +1055,7 @@ TEST_CASE("no heap allocation during advance() once set up", "[integrate][cvode]
   SECTION("BDF with projection, band and GMRES") {
     CvodeOptions o = tolerances(CvodeMethod::bdf, 1e-6);
     o.projection = true;
-    o.max_steps = 100000;
+    o.max_steps_per_call = 100000;
     Cvode projected(RotatingUnitVector{}, 0.0, Eigen::Vector3d(1.0, 0.0, 0.0), o);
     projected.advance(0.1);
     CvodeOptions g = tolerances(CvodeMethod::bdf, 1e-6);

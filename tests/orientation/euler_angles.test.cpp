@@ -4,8 +4,8 @@
 // (R, and the columns c1, c2, c3 of G as R_a3^T R_a2^T e_a1, R_a3^T e_a2, e_a3), the cross-product
 // forms of Gdot thetadot and G^{-1} (evaluated in long double from the AngleAxis columns), central
 // finite differences with Richardson extrapolation, Eigen's AutoDiffScalar, and closed-form
-// values of the distance to gimbal lock. Reference chapter: ../shared/reference/
-// rigid-body-chapter.md, Eqs. (1.1), (1.5), (1.10).
+// values of the distance to gimbal lock. Reference chapter: Chapter 1, "Rigid
+// body", Eqs. (1.1), (1.5), (1.10).
 
 #include "tumble/orientation/euler_angles.hpp"
 

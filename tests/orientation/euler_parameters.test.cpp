@@ -7,7 +7,7 @@
 // the Hamilton product written out below, the quaternion kinematic equation
 // pdot = 1/2 p (x) (0, omega) for body rates and its time derivative, and the constraint
 // |p| = 1 with its derivatives p.pdot = 0, p.pddot = -|pdot|^2. Reference chapter:
-// ../shared/reference/rigid-body-chapter.md, Eqs. (1.1), (1.5), (1.10).
+// Chapter 1, "Rigid body", Eqs. (1.1), (1.5), (1.10).
 //
 // Tolerances are k * eps_S: kEval = 32 for one evaluation of a closed form compared with
 // another one (each a few roundings per entry, see properties.test.cpp), kTwo = 64 for two

@@ -5,7 +5,7 @@
 // quaternion (s is built from (phi, n) by its definition), central finite differences in long
 // double for R^T Rdot, Gdot sdot and the rate of the shadow set, Eigen's AutoDiffScalar, the
 // identities G G^-1 = I and G sddot = alpha - Gdot sdot (Eq. 1.10), and closed-form angles.
-// Reference chapter: ../shared/reference/rigid-body-chapter.md, Eqs. (1.1), (1.5), (1.10).
+// Reference chapter: Chapter 1, "Rigid body", Eqs. (1.1), (1.5), (1.10).
 
 #include "tumble/orientation/modified_rodrigues.hpp"
 

@@ -2,7 +2,7 @@
 // tumble::test::AllParameterizations, in double, float and an AD scalar (Eigen's
 // AutoDiffScalar), is held to the same properties, each against an independent reference.
 //
-// Reference chapter: ../shared/reference/rigid-body-chapter.md, Sec. 1.1: R (Eq. 1.1),
+// Reference chapter: Chapter 1, "Rigid body", Sec. 1.1: R (Eq. 1.1),
 // S(omega) = R^T Rdot with omega = G thetadot (Eqs. 1.3, 1.5), alpha = Gdot thetadot +
 // G thetaddot (Eq. 1.10). Conventions: docs/conventions.md.
 //

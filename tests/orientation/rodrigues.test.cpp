@@ -4,7 +4,7 @@
 // quaternion (the Gibbs vector is built from (phi, n) by its definition), central finite
 // differences in long double for R^T Rdot and Gdot gdot, Eigen's AutoDiffScalar, the identities
 // G G^-1 = I and G gddot = alpha - Gdot gdot (Eq. 1.10), and closed-form angles for the distance
-// to the singularity. Reference chapter: ../shared/reference/rigid-body-chapter.md, Eqs. (1.1),
+// to the singularity. Reference chapter: Chapter 1, "Rigid body", Eqs. (1.1),
 // (1.5), (1.10).
 
 #include "tumble/orientation/rodrigues.hpp"

@@ -5,7 +5,7 @@
 // AutoDiffScalar, the identities G G^-1 = I and G vddot = alpha - Gdot vdot (Eq. 1.10), and a
 // table of 50-digit references computed with mpmath (below) for the accuracy of the Taylor
 // branches and the closed forms around their thresholds. Reference chapter:
-// ../shared/reference/rigid-body-chapter.md, Eqs. (1.1), (1.5), (1.10).
+// Chapter 1, "Rigid body", Eqs. (1.1), (1.5), (1.10).
 
 #include "tumble/orientation/rotation_vector.hpp"
 

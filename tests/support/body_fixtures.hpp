@@ -5,7 +5,7 @@
 // helpers, relative errors and a table of the worst errors met (printed at exit when the
 // environment variable TUMBLE_TEST_REPORT is set).
 //
-// Reference: ../shared/reference/rigid-body-chapter.md (the "reference chapter").
+// Reference: Chapter 1, "Rigid body" (the "reference chapter").
 //
 // Everything here is computed from the orientation primitives (P::rotation, P::G,
 // P::Gdot_thetadot, P::thetadot, P::from_rotation) and plain Eigen, never from RigidBody or the

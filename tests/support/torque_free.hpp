@@ -5,7 +5,7 @@
 // inertia I = diag(I1, I2, I3). Used by the integration tests and the benchmark work-precision
 // driver, so it is self-contained (Eigen + std, no tumble headers) and computes in long double.
 //
-// Conventions (those of the reference chapter, ../shared/reference/rigid-body-chapter.md):
+// Conventions (those of the reference chapter, Chapter 1, "Rigid body"):
 // R maps body components to inertial ones (r_F = R r_f, Eq. 1.1); omega is the angular velocity
 // of the body frame in BODY components, S(omega) = R^T Rdot (Eq. 1.3 gives Rdot = S(omega_F) R,
 // and omega_F = R omega). A quaternion is scalar first (e0, e1, e2, e3), Hamilton product.

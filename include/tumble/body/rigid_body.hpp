@@ -1,7 +1,7 @@
 #pragma once
 // RigidBody<P, Ref, S>: the equations of motion of one free rigid body in the generalized
 // coordinates q = [r_oc (3, inertial); theta (P::size)], exactly as derived in the reference
-// chapter (../shared/reference/rigid-body-chapter.md, Sec. 1.1-1.4):
+// chapter (Chapter 1, "Rigid body", Sec. 1.1-1.4):
 //   point kinematics    Eqs. (1.1), (1.7)-(1.8), (1.11)-(1.12)
 //   mass matrix M       Eqs. (1.21)-(1.23)
 //   f_v                 Eqs. (1.26)-(1.27)

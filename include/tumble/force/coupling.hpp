@@ -9,6 +9,8 @@
 #include <concepts>
 #include <utility>
 
+#include "tumble/core/errors.hpp"
+#include "tumble/core/math.hpp"
 #include "tumble/force/concept.hpp"
 #include "tumble/force/spring_damper.hpp"
 
@@ -48,11 +50,8 @@ class SpringDamperBetween {
   /// Elastic energy 1/2 k (L - L0)^2.
   template <class S>
   [[nodiscard]] S potential_energy(const KinematicsView<S>& a, const KinematicsView<S>& b) const {
-    using std::sqrt;
-    const Vector3<S> d =
-        b.point_position(detail::cast<S>(point_b_)) - a.point_position(detail::cast<S>(point_a_));
-    const S stretch = sqrt(d.squaredNorm()) - S(sd_.rest_length);
-    return S(0.5) * S(sd_.stiffness) * stretch * stretch;
+    return detail::spring_potential_energy<S>(sd_, a.point_position(detail::cast<S>(point_a_)),
+                                              b.point_position(detail::cast<S>(point_b_)));
   }
 
   [[nodiscard]] const SpringDamperParameters& parameters() const { return sd_; }
@@ -80,12 +79,22 @@ concept CouplingCallable = requires(const F& f, const S& t, const KinematicsView
 template <class F> class UserCoupling {
  public:
   explicit UserCoupling(F f) : f_(std::move(f)) {}
-  /// Available for the scalar types the callable accepts (see UserForce::apply).
+  /// \throws NonFiniteError if the callable adds a non-finite load to either body.
+  /// Available for the scalar types the callable accepts (see UserForce::apply). The callable
+  /// adds its loads to zero wrenches, checked, then added to wa and wb (so a non-finite load is
+  /// blamed on the callable that made it, not on a load applied before).
   template <class S>
   requires detail::CouplingCallable<F, S>
   void apply(const S& t, const KinematicsView<S>& a, const KinematicsView<S>& b, Wrench<S>& wa,
              Wrench<S>& wb) const {
-    f_(t, a, b, wa, wb);
+    Wrench<S> ua, ub;
+    f_(t, a, b, ua, ub);
+    if (!detail::isfinite(ua.force.sum() + ua.moment.sum() + ub.force.sum() + ub.moment.sum()))
+        [[unlikely]] {
+      throw NonFiniteError("tumble::UserCoupling: the user coupling added a non-finite load");
+    }
+    wa += ua;
+    wb += ub;
   }
 
  private:

@@ -56,6 +56,15 @@ Vector3<S> spring_damper_force(const SpringDamperParameters& sd, const Vector3<S
   const S tension = k * (len - S(sd.rest_length)) + c * u.dot(dv);
   return tension * u;
 }
+
+/// The elastic energy 1/2 k (L - L0)^2 of a spring-damper whose ends are at `p` and `a`.
+template <class S>
+S spring_potential_energy(const SpringDamperParameters& sd, const Vector3<S>& p,
+                          const Vector3<S>& a) {
+  using std::sqrt;
+  const S stretch = sqrt((a - p).squaredNorm()) - S(sd.rest_length);
+  return S(0.5) * S(sd.stiffness) * stretch * stretch;
+}
 }  // namespace detail
 
 class SpringDamper {
@@ -84,10 +93,8 @@ class SpringDamper {
   /// Elastic energy 1/2 k (L - L0)^2.
   template <class S, ReferencePoint Ref>
   [[nodiscard]] S potential_energy(const BodyKinematics<S, Ref>& k) const {
-    using std::sqrt;
-    const Vector3<S> d = detail::cast<S>(anchor_) - k.point_position(detail::cast<S>(point_));
-    const S stretch = sqrt(d.squaredNorm()) - S(sd_.rest_length);
-    return S(0.5) * S(sd_.stiffness) * stretch * stretch;
+    return detail::spring_potential_energy<S>(sd_, k.point_position(detail::cast<S>(point_)),
+                                              detail::cast<S>(anchor_));
   }
 
   [[nodiscard]] const SpringDamperParameters& parameters() const { return sd_; }

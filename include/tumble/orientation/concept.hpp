@@ -1,7 +1,7 @@
 #pragma once
 // The common interface of every orientation parameterization, written once as a C++20 concept.
 //
-// Reference: ../shared/reference/rigid-body-chapter.md (the "reference chapter"), Sec. 1.1.
+// Reference: Chapter 1, "Rigid body" (the "reference chapter"), Sec. 1.1.
 // Conventions (docs/conventions.md): R maps body components to inertial ones, r_F = R r_f;
 // omega is the angular velocity of the body frame relative to the inertial frame, expressed in
 // the body frame, omega = G(theta) thetadot (Eq. 1.5).

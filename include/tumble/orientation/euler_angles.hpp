@@ -2,7 +2,7 @@
 // Euler angles: the 12 intrinsic (body-fixed) rotation sequences, 6 Tait-Bryan (three different
 // axes) and 6 proper Euler (first axis repeated).
 //
-// Reference: ../shared/reference/rigid-body-chapter.md (the "reference chapter"), Sec. 1.1:
+// Reference: Chapter 1, "Rigid body" (the "reference chapter"), Sec. 1.1:
 // R (Eq. 1.1), G with omega = G thetadot (Eq. 1.5), the product Gdot thetadot (Eq. 1.10).
 //
 // Conventions (docs/conventions.md). Axes are numbered 0 = x, 1 = y, 2 = z; R_a(t) is the active
@@ -36,8 +36,9 @@
 //   proper (EulerXYX, EulerXZX, EulerYXY, EulerYZY, EulerZXZ, EulerZYZ):
 //       t2 = 0 or pi (mod 2 pi).
 // singularity_distance() measures the distance to that set; thetadot() and thetaddot() divide by
-// cos t2 (sin t2), are large but accurate near it and not finite exactly at it. A simulation
-// re-centers the chart before it gets there (see DESIGN.md).
+// cos t2 (sin t2), are large but accurate near it and not finite exactly at it. A scene never
+// gets there: it re-centers the chart, R = R0 R(theta), 45 deg before (include/tumble/scene/
+// chart.hpp: charts are re-centered before the singularity, found by CVODE's root finding).
 //
 // \warning The sequences are INTRINSIC: EulerAngles<2, 1, 0> (EulerZYX) is R_z(t1) R_y(t2) R_x(t3).
 //          A library or paper that calls the same product "XYZ" is using the extrinsic reading;

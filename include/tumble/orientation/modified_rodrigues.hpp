@@ -2,7 +2,7 @@
 // Modified Rodrigues parameters (MRP): s = n tan(phi/4) for the rotation by the angle phi about
 // the unit axis n, with their shadow set.
 //
-// Reference: ../shared/reference/rigid-body-chapter.md (the "reference chapter"), Sec. 1.1:
+// Reference: Chapter 1, "Rigid body" (the "reference chapter"), Sec. 1.1:
 // R (Eq. 1.1), G with omega = G thetadot (Eq. 1.5), the product Gdot thetadot (Eq. 1.10).
 // The kinematics follow H. Schaub and J. L. Junkins, "Analytical Mechanics of Space Systems",
 // Sec. 3.8 (their direction cosine matrix [BN] maps inertial to body components and is R^T here).

@@ -2,7 +2,7 @@
 // Rodrigues parameters (the Gibbs vector): g = n tan(phi/2) for the rotation by the angle phi
 // about the unit axis n.
 //
-// Reference: ../shared/reference/rigid-body-chapter.md (the "reference chapter"), Sec. 1.1:
+// Reference: Chapter 1, "Rigid body" (the "reference chapter"), Sec. 1.1:
 // R (Eq. 1.1), G with omega = G thetadot (Eq. 1.5), the product Gdot thetadot (Eq. 1.10).
 //
 // Conventions (docs/conventions.md): R maps body components to inertial ones, r_F = R r_f, and
@@ -24,8 +24,9 @@
 //
 // \warning Near 180 degrees g is huge and ill-conditioned: a rotation by 179.9999 degrees has
 //          |g| ~ 1.1e6, an absolute rounding error eps in e0 is a relative error ~eps |g| in g,
-//          and gdot = G^-1 omega grows like |g|^2. A simulation re-centers the chart well before
-//          (see DESIGN.md), driven by singularity_distance().
+//          and gdot = G^-1 omega grows like |g|^2. A scene re-centers the chart well before, at
+//          phi = 90 deg, driven by singularity_distance() (include/tumble/scene/chart.hpp:
+//          charts are re-centered before the singularity).
 // \warning from_quaternion() and from_rotation() throw NonFiniteError (a std::domain_error)
 //          for a rotation by exactly 180 degrees (e0 == 0): it has no Gibbs vector. Arbitrarily
 //          close rotations give huge but finite g.

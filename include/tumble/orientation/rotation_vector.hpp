@@ -2,7 +2,7 @@
 // The rotation vector (exponential coordinates): v = phi n for the rotation by the angle phi
 // about the unit axis n, R = exp(S(v)).
 //
-// Reference: ../shared/reference/rigid-body-chapter.md (the "reference chapter"), Sec. 1.1:
+// Reference: Chapter 1, "Rigid body" (the "reference chapter"), Sec. 1.1:
 // R (Eq. 1.1), G with omega = G thetadot (Eq. 1.5), the product Gdot thetadot (Eq. 1.10).
 //
 // Conventions (docs/conventions.md): R maps body components to inertial ones, r_F = R r_f, and

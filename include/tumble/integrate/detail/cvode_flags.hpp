@@ -12,9 +12,9 @@ namespace tumble::detail {
 [[nodiscard]] inline const char* flag_cause(int flag) noexcept {
   switch (flag) {
     case CV_TOO_MUCH_WORK:
-      return "the solver took max_steps internal steps without reaching the requested time; "
-             "raise CvodeOptions::max_steps, or, if the steps are tiny because the problem is "
-             "stiff, use CvodeMethod::bdf";
+      return "the solver took the per-call step limit of internal steps without reaching the "
+             "requested time; raise CvodeOptions::max_steps_per_call (0: no limit), or, if the "
+             "steps are tiny because the problem is stiff, use CvodeMethod::bdf";
     case CV_TOO_MUCH_ACC:
       return "the requested accuracy is beyond what double precision can deliver here; loosen "
              "rtol/atol";

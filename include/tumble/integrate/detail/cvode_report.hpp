@@ -1,0 +1,161 @@
+#pragma once
+// What tumble::Cvode's core reports, kept apart from its machinery: CallbackReport (what a
+// callback failed with, recorded without allocating inside C code), the IntegrationError built
+// from a CVODE failure flag or from a stalled integration (flag, cause in words, step limit,
+// callback report, CVODE's message), and add_counters(), which reads CVODE's counters of one
+// integration segment (CVodeGet*, "Optional output functions" of the CVODE user guide) into
+// CvodeStatistics.
+
+#include <array>
+#include <cstdio>
+#include <exception>
+#include <string>
+
+#include <cvode/cvode.h>
+#include <cvode/cvode_ls.h>
+#include <cvode/cvode_proj.h>
+
+#include "tumble/integrate/detail/cvode_flags.hpp"
+#include "tumble/integrate/detail/sundials.hpp"
+#include "tumble/integrate/errors.hpp"
+#include "tumble/integrate/options.hpp"
+
+namespace tumble::detail {
+
+/// What a callback reported: an unrecoverable exception (rethrown as the IntegrationError's
+/// cause) and the last recoverable failure (for the message when CVODE gives up). Filling it
+/// never allocates: exception_ptr only shares the thrown object, messages go to a fixed buffer.
+struct CallbackReport {
+  std::exception_ptr exception;
+  const char* exception_where = "";
+  double exception_time = 0.0;
+
+  bool has_recoverable = false;
+  const char* recoverable_where = "";
+  double recoverable_time = 0.0;
+  std::array<char, 256> recoverable_message{};
+
+  void clear() noexcept {
+    exception = nullptr;
+    has_recoverable = false;
+  }
+  void note_recoverable(const char* where, double t, const char* message) noexcept {
+    has_recoverable = true;
+    recoverable_where = where;
+    recoverable_time = t;
+    std::snprintf(recoverable_message.data(), recoverable_message.size(), "%s", message);
+  }
+};
+
+inline std::string format_number(double x) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.10g", x);
+  return buf;
+}
+
+inline std::string exception_message(const std::exception_ptr& e) {
+  try {
+    std::rethrow_exception(e);
+  } catch (const std::exception& x) {
+    return x.what();
+  } catch (...) {
+    return "an exception not derived from std::exception";
+  }
+}
+
+/// "; <what a callback reported>", or "" when it reported nothing.
+inline std::string callback_note(const CallbackReport& r) {
+  if (r.exception) {
+    return "; " + std::string(r.exception_where) +
+           " threw at t = " + format_number(r.exception_time) + ": " +
+           exception_message(r.exception);
+  }
+  if (r.has_recoverable) {
+    return "; last recoverable failure: " + std::string(r.recoverable_where) +
+           " at t = " + format_number(r.recoverable_time) + ": " + r.recoverable_message.data();
+  }
+  return "";
+}
+
+/// The IntegrationError for a failure flag of CVode() at time t: the flag, its cause in words,
+/// the step limit for CV_TOO_MUCH_WORK, what a callback reported, CVODE's own message.
+inline IntegrationError cvode_failure(int flag, double t, const CvodeOptions& o,
+                                      const CallbackReport& r, const ErrorCapture& e) {
+  const std::string name = flag_name(flag);
+  std::string what = "tumble::Cvode: CVODE failed with " + name + " at t = " + format_number(t) +
+                     ": " + flag_cause(flag);
+  if (flag == CV_TOO_MUCH_WORK) {
+    // Name the option the user set: the former name max_steps only when it alone was set.
+    what += o.max_steps_per_call == 0 && o.max_steps ? " (max_steps = " : " (max_steps_per_call = ";
+    what += std::to_string(step_limit_per_call(o)) + ")";
+  }
+  what += callback_note(r);
+  if (e.has_message) {
+    what += " [" + std::string(e.message.data()) + "]";
+  }
+  return IntegrationError(what, flag, name, t, r.exception);
+}
+
+/// The IntegrationError (CV_TOO_MUCH_WORK) for an integration without a per-call step limit
+/// whose last `steps` steps, of size about h, moved t only from `before` to t.
+inline IntegrationError stalled_failure(double before, double t, double h, long steps,
+                                        const CallbackReport& r) {
+  std::string what =
+      "tumble::Cvode: the integration stalled at t = " + format_number(t) + ": " +
+      std::to_string(steps) + " internal steps moved t from " + format_number(before) + " by " +
+      format_number(t - before) + " (step h = " + format_number(h) +
+      ", at the rounding level of t), so the requested time cannot be reached; the solution "
+      "changes too fast for the precision of t (shift the time origin), or the system has a "
+      "singularity here";
+  what += callback_note(r);
+  return IntegrationError(what, CV_TOO_MUCH_WORK, flag_name(CV_TOO_MUCH_WORK), t, r.exception);
+}
+
+/// Adds CVODE's counters of the current segment (since the last (re)initialization) to s. The
+/// flags say which optional counters exist (a linear solver, root functions, projection).
+inline void add_counters(void* mem, bool has_linear_solver, bool has_roots, bool projecting,
+                         CvodeStatistics& s) {
+  long steps = 0, rhs = 0, setups = 0, etf = 0;
+  int qlast = 0, qcur = 0;
+  sun_real h0 = 0, hlast = 0, hcur = 0, tcur = 0;
+  if (CVodeGetIntegratorStats(mem, &steps, &rhs, &setups, &etf, &qlast, &qcur, &h0, &hlast, &hcur,
+                              &tcur) == CV_SUCCESS) {
+    s.steps += steps;
+    s.rhs_evals += rhs;
+    s.linear_solver_setups += setups;
+    s.error_test_failures += etf;
+    s.last_order = qlast;
+    s.current_order = qcur;
+    s.last_step = hlast;
+    s.current_step = hcur;
+  }
+  long nni = 0, nncf = 0;
+  if (CVodeGetNonlinSolvStats(mem, &nni, &nncf) == CV_SUCCESS) {
+    s.nonlinear_iterations += nni;
+    s.nonlinear_convergence_failures += nncf;
+  }
+  // The getters below fail (and leave 0) when the feature is not in use, e.g. no linear
+  // solver with Adams, no projection, no roots.
+  auto add = [](long& total, auto getter, void* m) {
+    long value = 0;
+    if (getter(m, &value) >= 0) {
+      total += value;
+    }
+  };
+  if (has_linear_solver) {
+    add(s.jacobian_evals, &CVodeGetNumJacEvals, mem);
+    add(s.linear_rhs_evals, &CVodeGetNumLinRhsEvals, mem);
+    add(s.linear_iterations, &CVodeGetNumLinIters, mem);
+    add(s.preconditioner_setups, &CVodeGetNumPrecEvals, mem);
+    add(s.preconditioner_solves, &CVodeGetNumPrecSolves, mem);
+  }
+  if (has_roots) {
+    add(s.root_evals, &CVodeGetNumGEvals, mem);
+  }
+  if (projecting) {
+    add(s.projections, &CVodeGetNumProjEvals, mem);
+    add(s.projection_failures, &CVodeGetNumProjFails, mem);
+  }
+}
+
+}  // namespace tumble::detail

@@ -1,0 +1,258 @@
+#pragma once
+// The options and statistics of tumble::Cvode, without SUNDIALS: the method (CvodeMethod), the
+// linear solver of BDF's Newton iteration (CvodeLinearSolver, CvodePreconditioning), the
+// tolerances, step, iteration and projection options (CvodeOptions), the counters
+// (CvodeStatistics), and validate(), which checks every option that does not depend on the system
+// before anything is integrated and names a bad one in a std::invalid_argument.
+//
+// Most options map to one CVODE setter, named beside it; defaults are CVODE's own unless the
+// comment says otherwise. Source: the CVODE user guide (SUNDIALS 6.4 / 7.x), "Optional input
+// functions" and "Optional output functions".
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <variant>
+
+#include <Eigen/Core>
+
+namespace tumble {
+
+/// Linear multistep method (CVodeCreate's lmm).
+enum class CvodeMethod {
+  adams,  ///< Adams-Moulton, orders 1-12, fixed-point iteration: nonstiff problems
+  bdf,    ///< BDF, orders 1-5, Newton iteration with a linear solver: stiff problems
+};
+
+/// Linear solver of the Newton iteration (BDF only).
+enum class CvodeLinearSolver {
+  dense,  ///< dense LU; uses the system's jacobian() when it has one
+  band,   ///< banded LU with the half-bandwidths of CvodeOptions; uses the system's band
+          ///< jacobian() when it has one, else banded difference quotients
+  gmres,  ///< matrix-free GMRES (difference-quotient J v), optionally preconditioned
+};
+
+/// Side of the system's preconditioner in GMRES (ignored when the system has none).
+enum class CvodePreconditioning { none, left, right };
+
+/// Options of a Cvode integrator. Defaults are CVODE's own, except the method (BDF) and the
+/// per-call step limit (none; CVODE's is 500).
+/// Every option is validated when the integrator is constructed, before anything is integrated;
+/// a bad one throws std::invalid_argument naming it.
+struct CvodeOptions {
+  CvodeMethod method = CvodeMethod::bdf;
+  double rtol = 1e-6;  ///< relative tolerance, > 0
+  /// absolute tolerance: one value > 0, or one per component (all > 0)
+  std::variant<double, Eigen::VectorXd> atol = 1e-8;
+  int max_order = 0;  ///< 0: the method's maximum (Adams 12, BDF 5)
+  /// Internal steps allowed in one call of CVode(), i.e. in one advance() or between two output
+  /// times of integrate() (CVodeSetMaxNumSteps); more throws IntegrationError CV_TOO_MUCH_WORK
+  /// naming this limit. 0 (the default): no limit, however long the interval. Without a limit an
+  /// integration still ends: one that cannot succeed stops on CVODE's error-test or convergence
+  /// failures, and one that stalls (steps at the rounding level of t) is stopped by tumble with
+  /// CV_TOO_MUCH_WORK. There is no total budget: set this to bound the work of one call, e.g. of
+  /// Adams on a stiff problem, which progresses but with tiny steps.
+  long max_steps_per_call = 0;
+  /// The former name of max_steps_per_call, kept so that existing code compiles; prefer
+  /// max_steps_per_call. When set it must be > 0 and is the per-call limit; setting both to
+  /// different limits is an error.
+  std::optional<long> max_steps;
+  double initial_step = 0.0;  ///< 0: estimated by CVODE
+  double min_step = 0.0;
+  double max_step = std::numeric_limits<double>::infinity();
+  std::optional<double> stop_time;  ///< never step past it (CVodeSetStopTime)
+
+  CvodeLinearSolver linear_solver = CvodeLinearSolver::dense;  ///< BDF only
+  int upper_bandwidth = -1;  ///< band: half-bandwidths, in [0, n - 1]
+  int lower_bandwidth = -1;
+  int krylov_dimension = 0;  ///< GMRES: maximum Krylov subspace dimension, 0: SUNDIALS' 5
+  CvodePreconditioning preconditioning = CvodePreconditioning::left;  ///< GMRES
+  /// dense and band: use System::jacobian() when the system has one (false: CVODE's difference
+  /// quotients)
+  bool use_system_jacobian = true;
+
+  int max_error_test_failures = 7;    ///< per step (CVodeSetMaxErrTestFails)
+  int max_nonlinear_iterations = 3;   ///< per nonlinear solve (CVodeSetMaxNonlinIters)
+  int max_convergence_failures = 10;  ///< per step (CVodeSetMaxConvFails)
+
+  bool projection = false;            ///< project with System::project() (BDF only)
+  bool project_error = true;          ///< project the error estimate too (CVodeSetProjErrEst)
+  double projection_tolerance = 0.1;  ///< epsProj handed to project() (CVodeSetEpsProj)
+  long projection_frequency = 1;      ///< project every this many steps (CVodeSetProjFrequency)
+};
+
+/// Counters of a Cvode integrator, totals since construction (across reinitializations).
+struct CvodeStatistics {
+  long steps = 0;
+  long rhs_evals = 0;         ///< by the integrator (not counting linear_rhs_evals)
+  long linear_rhs_evals = 0;  ///< for difference-quotient Jacobians or J v products
+  long error_test_failures = 0;
+  long nonlinear_iterations = 0;
+  long nonlinear_convergence_failures = 0;
+  long jacobian_evals = 0;
+  long linear_solver_setups = 0;
+  long linear_iterations = 0;  ///< GMRES iterations
+  long preconditioner_setups = 0;
+  long preconditioner_solves = 0;
+  long root_evals = 0;   ///< evaluations of the root functions
+  long roots_found = 0;  ///< returns of CVODE at a root
+  long projections = 0;
+  long projection_failures = 0;
+  long reinits = 0;       ///< CVodeReInit calls (events that changed y, reset())
+  int last_order = 0;     ///< of the last step taken
+  int current_order = 0;  ///< to be tried on the next step
+  double last_step = 0.0;
+  double current_step = 0.0;
+};
+
+/// Validates the options that do not depend on the system (throws std::invalid_argument).
+/// `n` is the system size, `t0` the initial time.
+inline void validate(const CvodeOptions& o, int n, double t0) {
+  auto fail = [](const std::string& what) {
+    throw std::invalid_argument("tumble::CvodeOptions: " + what);
+  };
+  auto num = [](double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", x);
+    return std::string(buf);
+  };
+  if (n <= 0) {
+    fail("the system size must be > 0 (got " + std::to_string(n) + ")");
+  }
+  if (!std::isfinite(t0)) {
+    fail("the initial time must be finite (got " + num(t0) + ")");
+  }
+  if (o.method != CvodeMethod::adams && o.method != CvodeMethod::bdf) {
+    fail("'method' is not a CvodeMethod");
+  }
+  if (!(std::isfinite(o.rtol) && o.rtol > 0.0)) {
+    fail("'rtol' must be finite and > 0 (got " + num(o.rtol) + ")");
+  }
+  if (const auto* a = std::get_if<double>(&o.atol)) {
+    if (!(std::isfinite(*a) && *a > 0.0)) {
+      fail("'atol' must be finite and > 0 (got " + num(*a) + ")");
+    }
+  } else {
+    const auto& v = std::get<Eigen::VectorXd>(o.atol);
+    if (v.size() != n) {
+      fail("'atol' per component must have the system size " + std::to_string(n) + " (got " +
+           std::to_string(v.size()) + ")");
+    }
+    for (Eigen::Index i = 0; i < v.size(); ++i) {
+      if (!(std::isfinite(v[i]) && v[i] > 0.0)) {
+        fail("'atol' component " + std::to_string(i) + " must be finite and > 0 (got " + num(v[i]) +
+             ")");
+      }
+    }
+  }
+  const int order_limit = o.method == CvodeMethod::adams ? 12 : 5;
+  if (o.max_order < 0 || o.max_order > order_limit) {
+    fail("'max_order' must be in [1, " + std::to_string(order_limit) + "] for " +
+         (o.method == CvodeMethod::adams ? "Adams" : "BDF") + ", or 0 for the maximum (got " +
+         std::to_string(o.max_order) + ")");
+  }
+  if (o.max_steps_per_call < 0) {
+    fail("'max_steps_per_call' must be >= 0, 0 for no limit (got " +
+         std::to_string(o.max_steps_per_call) + ")");
+  }
+  if (o.max_steps) {
+    if (*o.max_steps <= 0) {
+      fail("'max_steps' must be > 0 (got " + std::to_string(*o.max_steps) +
+           "); for no limit leave it unset and 'max_steps_per_call' = 0");
+    }
+    if (o.max_steps_per_call != 0 && o.max_steps_per_call != *o.max_steps) {
+      fail("'max_steps' (" + std::to_string(*o.max_steps) + ") and 'max_steps_per_call' (" +
+           std::to_string(o.max_steps_per_call) +
+           ") disagree; set only 'max_steps_per_call' (max_steps is its former name)");
+    }
+  }
+  if (!(std::isfinite(o.initial_step) && o.initial_step >= 0.0)) {
+    fail("'initial_step' must be finite and >= 0 (got " + num(o.initial_step) + ")");
+  }
+  if (!(std::isfinite(o.min_step) && o.min_step >= 0.0)) {
+    fail("'min_step' must be finite and >= 0 (got " + num(o.min_step) + ")");
+  }
+  if (!(o.max_step > 0.0)) {  // also rejects NaN; +inf means no bound
+    fail("'max_step' must be > 0 (got " + num(o.max_step) + ")");
+  }
+  if (o.min_step > o.max_step) {
+    fail("'min_step' (" + num(o.min_step) + ") must not exceed 'max_step' (" + num(o.max_step) +
+         ")");
+  }
+  if (o.initial_step > 0.0 && (o.initial_step < o.min_step || o.initial_step > o.max_step)) {
+    fail("'initial_step' (" + num(o.initial_step) + ") must lie in [min_step, max_step]");
+  }
+  if (o.stop_time && !(std::isfinite(*o.stop_time) && *o.stop_time > t0)) {
+    fail("'stop_time' must be finite and after the initial time " + num(t0) + " (got " +
+         num(*o.stop_time) + ")");
+  }
+  if (o.method == CvodeMethod::bdf) {
+    switch (o.linear_solver) {
+      case CvodeLinearSolver::dense:
+        break;
+      case CvodeLinearSolver::band:
+        if (o.upper_bandwidth < 0 || o.upper_bandwidth > n - 1) {
+          fail("'upper_bandwidth' must be in [0, " + std::to_string(n - 1) + "] (got " +
+               std::to_string(o.upper_bandwidth) + ")");
+        }
+        if (o.lower_bandwidth < 0 || o.lower_bandwidth > n - 1) {
+          fail("'lower_bandwidth' must be in [0, " + std::to_string(n - 1) + "] (got " +
+               std::to_string(o.lower_bandwidth) + ")");
+        }
+        break;
+      case CvodeLinearSolver::gmres:
+        if (o.krylov_dimension < 0) {
+          fail("'krylov_dimension' must be >= 0 (got " + std::to_string(o.krylov_dimension) + ")");
+        }
+        if (o.preconditioning != CvodePreconditioning::none &&
+            o.preconditioning != CvodePreconditioning::left &&
+            o.preconditioning != CvodePreconditioning::right) {
+          fail("'preconditioning' is not a CvodePreconditioning");
+        }
+        break;
+      default:
+        fail("'linear_solver' is not a CvodeLinearSolver");
+    }
+  }
+  if (o.max_error_test_failures <= 0) {
+    fail("'max_error_test_failures' must be > 0 (got " + std::to_string(o.max_error_test_failures) +
+         ")");
+  }
+  if (o.max_nonlinear_iterations <= 0) {
+    fail("'max_nonlinear_iterations' must be > 0 (got " +
+         std::to_string(o.max_nonlinear_iterations) + ")");
+  }
+  if (o.max_convergence_failures <= 0) {
+    fail("'max_convergence_failures' must be > 0 (got " +
+         std::to_string(o.max_convergence_failures) + ")");
+  }
+  if (o.projection) {
+    if (o.method != CvodeMethod::bdf) {
+      // CVodeSetProjFn: "projection is only supported with BDF methods".
+      fail("'projection' needs method = CvodeMethod::bdf (CVODE projects only with BDF)");
+    }
+    if (!(std::isfinite(o.projection_tolerance) && o.projection_tolerance > 0.0)) {
+      fail("'projection_tolerance' must be finite and > 0 (got " + num(o.projection_tolerance) +
+           ")");
+    }
+    if (o.projection_frequency < 1) {
+      fail("'projection_frequency' must be >= 1 (got " + std::to_string(o.projection_frequency) +
+           "); set 'projection' = false to disable");
+    }
+  }
+}
+
+namespace detail {
+
+/// The per-call step limit the options ask for (max_steps_per_call, or its former name
+/// max_steps), 0 for none.
+[[nodiscard]] inline long step_limit_per_call(const CvodeOptions& o) noexcept {
+  return o.max_steps_per_call > 0 ? o.max_steps_per_call : o.max_steps.value_or(0);
+}
+
+}  // namespace detail
+
+}  // namespace tumble
