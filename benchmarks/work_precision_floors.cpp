@@ -125,7 +125,6 @@ Run run_handwritten(const Problem& p, const CvodeSetting& c, const Timing& timin
   o.method = c.scheme == Scheme::bdf ? CvodeMethod::bdf : CvodeMethod::adams;
   o.rtol = c.tol;
   o.atol = c.tol;
-  o.max_steps = 100'000'000;
   o.projection = c.scheme == Scheme::bdf;
   const HandWrittenSystem system{p.inertia, p.inertia.cwiseInverse(), p.gravity,
                                  c.scheme != Scheme::bdf};

@@ -105,7 +105,6 @@ Run run_pinocchio(const Problem& p, const CvodeSetting& c, const Timing& timing)
   o.method = c.scheme == Scheme::bdf ? CvodeMethod::bdf : CvodeMethod::adams;
   o.rtol = c.tol;
   o.atol = c.tol;
-  o.max_steps = 100'000'000;
   o.projection = c.scheme == Scheme::bdf;
   std::vector<double> times;
   try {

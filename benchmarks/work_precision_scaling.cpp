@@ -115,7 +115,6 @@ ScalingRow measure_bdf(int n, CvodeLinearSolver solver, const ScalingPlan& plan,
   o.cvode.atol = 1e-8;
   o.cvode.linear_solver = solver;
   o.cvode.use_system_jacobian = exact_jacobian;
-  o.cvode.max_steps = 1'000'000;
   // band: the half-bandwidths are left at -1, so SceneIntegrator takes the scene's own
   // (Scene::half_bandwidth: 27 for this chain, 13 for one body).
   double best = std::numeric_limits<double>::infinity();

@@ -26,7 +26,6 @@ inline SceneIntegratorOptions scene_options(const CvodeSetting& c) {
   o.cvode.method = c.scheme == Scheme::bdf ? CvodeMethod::bdf : CvodeMethod::adams;
   o.cvode.rtol = c.tol;
   o.cvode.atol = c.tol;
-  o.cvode.max_steps = 100'000'000;  // per output interval: the sweep must not stop on it
   o.cvode.use_system_jacobian = c.exact_jacobian;
   return o;
 }

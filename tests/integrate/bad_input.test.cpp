@@ -203,9 +203,9 @@ TEST_CASE("bad input: other options out of range", "[integrate][bad_input]") {
   CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, o); }),
             "'max_order' must be in [1, 5] for BDF"));
   o = opts();
-  o.cvode.max_steps = 0;
+  o.cvode.max_steps_per_call = -1;
   CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, o); }),
-            "'max_steps' must be > 0"));
+            "'max_steps_per_call' must be >= 0, 0 for no limit (got -1)"));
   o = opts();
   o.cvode.stop_time = -1.0;
   CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, o); }),
@@ -326,7 +326,7 @@ TEST_CASE("bad input: CVODE failures arrive as IntegrationError with the flag an
     TestScene scene;
     (void)scene.add(Zyx(kMass), {.omega = {0.3, 2, 0.1}});
     auto o = opts(CvodeMethod::adams);
-    o.cvode.max_steps = 10;
+    o.cvode.max_steps_per_call = 10;
     o.cvode.rtol = 1e-10;
     SceneIntegrator integrator(scene, 0.0, o);
     try {
@@ -334,7 +334,7 @@ TEST_CASE("bad input: CVODE failures arrive as IntegrationError with the flag an
       FAIL("no error");
     } catch (const IntegrationError& e) {
       CHECK(e.flag_name() == "CV_TOO_MUCH_WORK");
-      CHECK(has(e.what(), "(max_steps = 10)"));
+      CHECK(has(e.what(), "(max_steps_per_call = 10)"));
       CHECK(e.time() > 0.0);
       CHECK(e.time() < 100.0);
     }

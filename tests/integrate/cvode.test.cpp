@@ -639,12 +639,6 @@ TEST_CASE("bad options throw std::invalid_argument naming them, before integrati
   rejects(with([](CvodeOptions& o) { o.max_order = 6; }), "'max_order'");  // BDF
   rejects(with([](CvodeOptions& o) { o.max_order = -1; }), "'max_order'");
   rejects(with([](CvodeOptions& o) { o.max_steps_per_call = -1; }), "'max_steps_per_call'");
-  rejects(with([](CvodeOptions& o) { o.max_steps = 0; }), "'max_steps'");  // the former name
-  rejects(with([](CvodeOptions& o) {
-            o.max_steps = 100;
-            o.max_steps_per_call = 200;
-          }),
-          "disagree");
   rejects(with([](CvodeOptions& o) { o.initial_step = -0.1; }), "'initial_step'");
   rejects(with([](CvodeOptions& o) { o.min_step = -0.1; }), "'min_step'");
   rejects(with([](CvodeOptions& o) { o.max_step = 0.0; }), "'max_step'");
@@ -721,15 +715,8 @@ TEST_CASE("too much work: IntegrationError names CV_TOO_MUCH_WORK, the limit and
           "[integrate][cvode]") {
   const StiffLinear system;
   CvodeOptions o = tolerances(CvodeMethod::adams, 1e-8);
-  std::string limit;
-  SECTION("max_steps_per_call") {
-    o.max_steps_per_call = 200;
-    limit = "(max_steps_per_call = 200)";
-  }
-  SECTION("its former name, max_steps") {
-    o.max_steps = 200;
-    limit = "(max_steps = 200)";
-  }
+  o.max_steps_per_call = 200;
+  const std::string limit = "(max_steps_per_call = 200)";
   Cvode cvode(system, 0.0, system.exact(0.0, 1.0, 0.5), o);
   try {
     cvode.advance(10.0);
@@ -757,7 +744,6 @@ TEST_CASE("no per-call step limit by default: one long advance of a tumbling bod
   const Eigen::Vector3d w0(0.05, 2.0, 0.05);  // near the intermediate axis
   CvodeOptions o = tolerances(CvodeMethod::bdf, 1e-10);
   CHECK(o.max_steps_per_call == 0);
-  CHECK(!o.max_steps);
   SECTION("the default: the whole interval in one call") {
     Cvode cvode(body, 0.0, w0, o);
     const Eigen::Vector3d w = cvode.advance(50.0);

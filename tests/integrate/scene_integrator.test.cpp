@@ -237,7 +237,7 @@ StiffRun stiff_run(CvodeMethod method, double t_end, long max_steps) {
                                          {.stiffness = 1e6, .damping = 2e4, .rest_length = 0.0}));
   scene.add_load(h, tumble::UniformGravity(Vector3d(0, 0, -9.81)));
   SceneIntegratorOptions o = options(method, 1e-8);
-  o.cvode.max_steps = max_steps;
+  o.cvode.max_steps_per_call = max_steps;
   SceneIntegrator integrator(scene, 0.0, o);
   StiffRun r;
   try {
@@ -420,7 +420,7 @@ TEST_CASE("a user force returning NaN: an IntegrationError that names the cause"
           scene.add(EP(tumbling_mass()), {.velocity = Vector3d(1, 0, 0), .omega = kOmega});
       scene.add_load(h, Failing(FailingForce{&broken, 1.0}));
       SceneIntegratorOptions o = options(method, 1e-8);
-      o.cvode.max_steps = 2000;
+      o.cvode.max_steps_per_call = 2000;
       SceneIntegrator integrator(scene, 0.0, o);
       try {
         integrator.advance(3.0);

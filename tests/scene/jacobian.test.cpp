@@ -418,7 +418,6 @@ StiffRun stiff_tops(tumble::CvodeLinearSolver solver, bool exact_jacobian, doubl
   o.cvode.method = tumble::CvodeMethod::bdf;
   o.cvode.rtol = tol;
   o.cvode.atol = tol;
-  o.cvode.max_steps = 1000000;
   o.cvode.linear_solver = solver;
   o.cvode.use_system_jacobian = exact_jacobian;
   o.cvode.preconditioning = side;

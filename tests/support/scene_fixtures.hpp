@@ -24,14 +24,15 @@ inline Eigen::Matrix3d rot(double angle, const Eigen::Vector3d& axis) {
   return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
 }
 
-/// CVODE's method at rtol = atol = tol; `max_steps` bounds the steps of one advance() call.
+/// CVODE's method at rtol = atol = tol; `max_steps` bounds the steps of one advance() call (a
+/// test that goes wrong then fails instead of running on).
 inline SceneIntegratorOptions integrator_options(CvodeMethod method, double tol,
                                                  long max_steps = 1000000) {
   SceneIntegratorOptions o;
   o.cvode.method = method;
   o.cvode.rtol = tol;
   o.cvode.atol = tol;
-  o.cvode.max_steps = max_steps;
+  o.cvode.max_steps_per_call = max_steps;
   return o;
 }
 

@@ -56,10 +56,6 @@ struct CvodeOptions {
   /// CV_TOO_MUCH_WORK. There is no total budget: set this to bound the work of one call, e.g. of
   /// Adams on a stiff problem, which progresses but with tiny steps.
   long max_steps_per_call = 0;
-  /// The former name of max_steps_per_call, kept so that existing code compiles; prefer
-  /// max_steps_per_call. When set it must be > 0 and is the per-call limit; setting both to
-  /// different limits is an error.
-  std::optional<long> max_steps;
   double initial_step = 0.0;  ///< 0: estimated by CVODE
   double min_step = 0.0;
   double max_step = std::numeric_limits<double>::infinity();
@@ -158,17 +154,6 @@ inline void validate(const CvodeOptions& o, int n, double t0) {
     fail("'max_steps_per_call' must be >= 0, 0 for no limit (got " +
          std::to_string(o.max_steps_per_call) + ")");
   }
-  if (o.max_steps) {
-    if (*o.max_steps <= 0) {
-      fail("'max_steps' must be > 0 (got " + std::to_string(*o.max_steps) +
-           "); for no limit leave it unset and 'max_steps_per_call' = 0");
-    }
-    if (o.max_steps_per_call != 0 && o.max_steps_per_call != *o.max_steps) {
-      fail("'max_steps' (" + std::to_string(*o.max_steps) + ") and 'max_steps_per_call' (" +
-           std::to_string(o.max_steps_per_call) +
-           ") disagree; set only 'max_steps_per_call' (max_steps is its former name)");
-    }
-  }
   if (!(std::isfinite(o.initial_step) && o.initial_step >= 0.0)) {
     fail("'initial_step' must be finite and >= 0 (got " + num(o.initial_step) + ")");
   }
@@ -247,10 +232,9 @@ inline void validate(const CvodeOptions& o, int n, double t0) {
 
 namespace detail {
 
-/// The per-call step limit the options ask for (max_steps_per_call, or its former name
-/// max_steps), 0 for none.
+/// The per-call step limit the options ask for, 0 for none.
 [[nodiscard]] inline long step_limit_per_call(const CvodeOptions& o) noexcept {
-  return o.max_steps_per_call > 0 ? o.max_steps_per_call : o.max_steps.value_or(0);
+  return o.max_steps_per_call;
 }
 
 }  // namespace detail

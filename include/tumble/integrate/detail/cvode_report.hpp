@@ -85,9 +85,7 @@ inline IntegrationError cvode_failure(int flag, double t, const CvodeOptions& o,
   std::string what = "tumble::Cvode: CVODE failed with " + name + " at t = " + format_number(t) +
                      ": " + flag_cause(flag);
   if (flag == CV_TOO_MUCH_WORK) {
-    // Name the option the user set: the former name max_steps only when it alone was set.
-    what += o.max_steps_per_call == 0 && o.max_steps ? " (max_steps = " : " (max_steps_per_call = ";
-    what += std::to_string(step_limit_per_call(o)) + ")";
+    what += " (max_steps_per_call = " + std::to_string(step_limit_per_call(o)) + ")";
   }
   what += callback_note(r);
   if (e.has_message) {
