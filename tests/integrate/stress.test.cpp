@@ -72,17 +72,7 @@ SceneIntegratorOptions options(CvodeMethod method, double tol, long max_steps = 
   return tumble::test::integrator_options(method, tol, max_steps);
 }
 
-/// Bound on the global error of an attitude or angular-velocity history after `steps` steps at
-/// tolerance `tol` over [0, t_end], for a motion turning at `rate` rad/s. Each step commits a
-/// local error of about tol (CVODE's weighted norm); a rate error committed at time t shifts the
-/// phase of the motion by rate x (t_end - t) times as much by t_end (torque-free motion is
-/// neutrally stable: errors grow linearly, not exponentially), so the sum over the steps is below
-/// tol x steps x (1 + rate x t_end). The factor 5 is the margin over the worst case measured
-/// (nearly symmetric and thin bodies, Gibbs through 180 deg: about 1.5 of the model; GCC 12,
-/// Clang 14, SUNDIALS 6.4); most runs stay far below it.
-double global_error_bound(double tol, long steps, double rate, double t_end) {
-  return 5.0 * tol * static_cast<double>(steps) * (1.0 + rate * t_end);
-}
+using tumble::test::global_error_bound;
 
 // ---- the tumbling body: long runs --------------------------------------------------------------
 
