@@ -67,6 +67,7 @@
 #include "orientation/reference/reference_values.hpp"
 #include "support/catch.hpp"
 #include "support/finite_difference.hpp"
+#include "support/numeric.hpp"
 #include "support/parameterizations.hpp"
 #include "support/random.hpp"
 #include "support/type_product.hpp"
@@ -114,7 +115,7 @@ template <class S> constexpr std::string_view scalar_name() {
   }
 }
 
-template <class S> LD eps() { return static_cast<LD>(detail::epsilon<S>()); }
+using test::eps;
 const LD kEpsD = eps<double>();
 
 /// The value type of S (double for AD).
