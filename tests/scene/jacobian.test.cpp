@@ -169,7 +169,7 @@ std::pair<VectorXd, double> fd_column(SceneT& scene, double t, const VectorXd& y
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("Scene::jacobian equals extrapolated central differences of rhs",
-                        "[scene][jacobian]", TUMBLE_TEST_PARAMETERIZATIONS) {
+                        "[scene][jacobian]", tumble::test::AllParameterizations) {
   using P = TestType;
   tumble::test::Random rng(7301);
   for (int trial = 0; trial < 3; ++trial) {
