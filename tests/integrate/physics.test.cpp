@@ -196,7 +196,7 @@ TEST_CASE("the torque-free reference is close to the separatrix", "[integrate][p
 // Bounds, about 3 times the worst measured: attitude 5e7 tol, omega 1e8 tol, energy 6e3 tol and
 // momentum 4e3 tol (Gibbs: 1e5 and 5e4), drift 50 tol (Adams), 2 tol (BDF).
 TEMPLATE_LIST_TEST_CASE("torque-free asymmetric body near the separatrix: Jacobi reference",
-                        "[integrate][physics]", TUMBLE_TEST_PARAMETERIZATIONS) {
+                        "[integrate][physics]", AllParameterizations) {
   using P = TestType;
   const double tol = 1e-10;
   constexpr bool gibbs = std::is_same_v<P, tumble::RodriguesParameters>;
@@ -223,7 +223,7 @@ TEMPLATE_LIST_TEST_CASE("torque-free asymmetric body near the separatrix: Jacobi
 // Convergence to the analytic solution: 100 times tighter, the omega error falls by 11 - 880
 // (measured; 100^(q/(q+1)) for order q with CVODE's error-per-step control). Bound: 4.
 TEMPLATE_LIST_TEST_CASE("torque-free asymmetric body: the error converges with the tolerance",
-                        "[integrate][physics][.slow]", TUMBLE_TEST_PARAMETERIZATIONS) {
+                        "[integrate][physics][.slow]", AllParameterizations) {
   using P = TestType;
   for (const CvodeMethod method : {CvodeMethod::adams, CvodeMethod::bdf}) {
     INFO(name<P>() << " with " << method_name(method));
@@ -287,7 +287,7 @@ struct Axisymmetric {
 // attitude 30 .. 1.6e4 tol, omega 30 .. 1.1e4 tol; the Gibbs vector 8.6e4 and 8.2e4 tol (BDF).
 // Bounds: 5e4 tol (Gibbs: 3e5 tol).
 TEMPLATE_LIST_TEST_CASE("torque-free axisymmetric body: closed form", "[integrate][physics]",
-                        TUMBLE_TEST_PARAMETERIZATIONS) {
+                        AllParameterizations) {
   using P = TestType;
   using Body = RigidBody<P>;
   const Axisymmetric exact{1.0, 2.0, Vector3d(0.8, -0.6, 1.5), rot(1.0, Vector3d(2, 1, -1))};
@@ -526,7 +526,7 @@ template <class P> Trajectory nutation_trajectory(CvodeMethod method, double tol
 // tol (the Gibbs vector: 1.2e5 and 3.6e4 tol, BDF); against the analytic solution R 400 .. 4.0e4
 // tol, omega 400 .. 1.3e4 tol (Gibbs: 1.2e5, 3.5e4). Bounds: 1.5e5 tol (Gibbs: 4e5 tol).
 TEMPLATE_LIST_TEST_CASE("every parameterization gives the trajectory of Euler parameters",
-                        "[integrate][physics]", TUMBLE_TEST_PARAMETERIZATIONS) {
+                        "[integrate][physics]", AllParameterizations) {
   using P = TestType;
   const double tol = 1e-12;
   const Nutation n;

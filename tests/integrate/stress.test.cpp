@@ -207,14 +207,14 @@ template <class P> void check_long(CvodeMethod m, double tol, double t_end) {
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("stress: the tumbling body for 500 s", "[integrate][stress]",
-                        TUMBLE_TEST_PARAMETERIZATIONS) {
+                        AllParameterizations) {
   for (const CvodeMethod m : {CvodeMethod::adams, CvodeMethod::bdf}) {
     check_long<TestType>(m, 1e-9, 500.0);
   }
 }
 
 TEMPLATE_LIST_TEST_CASE("stress: the tumbling body for 10,000 s", "[integrate][stress][.long]",
-                        TUMBLE_TEST_PARAMETERIZATIONS) {
+                        AllParameterizations) {
   for (const CvodeMethod m : {CvodeMethod::adams, CvodeMethod::bdf}) {
     check_long<TestType>(m, 1e-10, 10000.0);
   }
@@ -223,7 +223,7 @@ TEMPLATE_LIST_TEST_CASE("stress: the tumbling body for 10,000 s", "[integrate][s
 // ---- fast spin: |omega| = 1e3 rad/s -------------------------------------------------------------
 
 TEMPLATE_LIST_TEST_CASE("stress: fast spin, |omega| = 1e3 rad/s", "[integrate][stress]",
-                        TUMBLE_TEST_PARAMETERIZATIONS) {
+                        AllParameterizations) {
   using P = TestType;
   const double k = 1e3 / kOmega.norm();
   const double tol = 1e-9;
@@ -315,7 +315,7 @@ template <class P> SingularRun singular_run(CvodeMethod m, double tol, int turns
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("stress: straight through the singular attitudes, many turns",
-                        "[integrate][stress]", TUMBLE_TEST_PARAMETERIZATIONS) {
+                        "[integrate][stress]", AllParameterizations) {
   using P = TestType;
   if constexpr (!P::has_constraint) {
     const int turns = 20;
@@ -374,7 +374,7 @@ ClosedFormRun closed_form_error(const Vector3d& inertia, const Vector3d& omega, 
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("stress: a thin rod (1e-6 : 1 : 1) and nearly symmetric bodies",
-                        "[integrate][stress]", TUMBLE_TEST_PARAMETERIZATIONS) {
+                        "[integrate][stress]", AllParameterizations) {
   using P = TestType;
   const double tol = 1e-10;
   struct Case {
@@ -638,7 +638,7 @@ template <class P, class S> void check_core_type(const char* type) {
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("stress: the core in float, double and long double", "[integrate][stress]",
-                        TUMBLE_TEST_PARAMETERIZATIONS) {
+                        AllParameterizations) {
   check_core_type<TestType, float>("float");
   check_core_type<TestType, double>("double");
   check_core_type<TestType, long double>("long double");
@@ -680,7 +680,7 @@ void report_row(const char* scene, const std::string& param, const char* method,
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("stress: report table", "[integrate][stress][.report]",
-                        TUMBLE_TEST_PARAMETERIZATIONS) {
+                        AllParameterizations) {
   using P = TestType;
   const std::string name(P::name);
   const double k = 1e3 / kOmega.norm();
