@@ -66,12 +66,11 @@ using AllParameterizations = std::tuple<EulerParameters
 // slice gets a mix of Euler angles and the vector charts, which differ in compile time). Without
 // them it is AllParameterizations itself, and the test names are those of an unsliced build.
 //
-// Why: the heaviest sources instantiate a scene, an integrator and their AD Jacobian for each of
-// the 16 parameterizations; in one translation unit that is one compiler process of several GB
-// and minutes, which no second core can share. Slices compile in parallel, each in a fraction of
-// the memory. The slice's name is part of the Catch2 name of every TEMPLATE_LIST_TEST_CASE
-// ("<name> - tumble::test::ParameterizationSlice<k> - <index>"), so that the executable holding
-// slice k can run exactly the list cases of slice k (tests/CMakeLists.txt).
+// Why: orientation/properties and body/rigid_body instantiate their checks for every
+// parameterization (properties also for every scalar type); in one translation unit each is one
+// compiler process of minutes and over 4 GB, which no second core can share. Slices compile in
+// parallel, each in a fraction of the memory. The slice's name is part of the Catch2 name of
+// every TEMPLATE_LIST_TEST_CASE ("<name> - tumble::test::ParameterizationSlice<k> - <index>").
 
 namespace detail_slice {
 template <std::size_t K, std::size_t N, class List> struct Slice;
