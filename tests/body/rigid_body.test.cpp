@@ -7,7 +7,8 @@
 //   - the accelerations (closed-form Newton-Euler) against the residual of Eq. (1.32) and a dense
 //     LU of M (of the constrained system [M, C^T; C, 0] for Euler parameters), with every kind of
 //     load, and with a generalized force given directly;
-//   - non-finite states and loads, the centroid check, and the float / AD instantiations.
+//   - non-finite states and loads, and the centroid check.
+// The float, long double and AD bodies are tested in rigid_body_scalar_types.test.cpp.
 // Every parameterization in tests/support/parameterizations.hpp, both reference points.
 
 #include "tumble/body/rigid_body.hpp"
@@ -107,7 +108,7 @@ template <class P, ReferencePoint Ref> void check_mass_matrix_and_fv() {
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("mass matrix and f_v equal the sums over point masses (Eqs. 1.18, 1.19)",
-                        "[body][rigid_body]", tumble::test::AllParameterizations) {
+                        "[body][rigid_body]", TUMBLE_TEST_PARAMETERIZATIONS) {
   check_mass_matrix_and_fv<TestType, ReferencePoint::centroid>();
   check_mass_matrix_and_fv<TestType, ReferencePoint::offset>();
 }
@@ -164,7 +165,7 @@ template <class P, ReferencePoint Ref> void check_point_kinematics() {
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("point Jacobian, velocity and acceleration against AD (Eqs. 1.7-1.14)",
-                        "[body][rigid_body]", tumble::test::AllParameterizations) {
+                        "[body][rigid_body]", TUMBLE_TEST_PARAMETERIZATIONS) {
   check_point_kinematics<TestType, ReferencePoint::centroid>();
   check_point_kinematics<TestType, ReferencePoint::offset>();
 }
@@ -315,19 +316,19 @@ template <class P, ReferencePoint Ref> void check_generalized_force_given() {
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("accelerations solve M qddot = f_v + Q with every kind of load (Eq. 1.32)",
-                        "[body][rigid_body]", tumble::test::AllParameterizations) {
+                        "[body][rigid_body]", TUMBLE_TEST_PARAMETERIZATIONS) {
   check_equations_of_motion<TestType, ReferencePoint::centroid>();
   check_equations_of_motion<TestType, ReferencePoint::offset>();
 }
 
 TEMPLATE_LIST_TEST_CASE("accelerations for a generalized force given directly (Eq. 1.32)",
-                        "[body][rigid_body]", tumble::test::AllParameterizations) {
+                        "[body][rigid_body]", TUMBLE_TEST_PARAMETERIZATIONS) {
   check_generalized_force_given<TestType, ReferencePoint::centroid>();
   check_generalized_force_given<TestType, ReferencePoint::offset>();
 }
 
 TEMPLATE_LIST_TEST_CASE("an offset body with a zero offset equals the centroidal body",
-                        "[body][rigid_body]", tumble::test::AllParameterizations) {
+                        "[body][rigid_body]", TUMBLE_TEST_PARAMETERIZATIONS) {
   using P = TestType;
   tumble::test::Random rng(105);
   const auto model = tumble::test::random_body(rng, false);
@@ -350,6 +351,7 @@ TEMPLATE_LIST_TEST_CASE("an offset body with a zero offset equals the centroidal
 
 // --- rejections and non-finite input -------------------------------------------------------------
 
+#if TUMBLE_TEST_PRIMARY_SLICE
 TEST_CASE("a centroidal RigidBody rejects a centroid away from the reference point",
           "[body][rigid_body]") {
   using MP = tumble::MassProperties<double>;
@@ -361,6 +363,7 @@ TEST_CASE("a centroidal RigidBody rejects a centroid away from the reference poi
   REQUIRE_NOTHROW(Offset(mp));
   REQUIRE_NOTHROW(Centroidal(MP::about_centroid(2.0, Matrix3d::Identity())));
 }
+#endif  // TUMBLE_TEST_PRIMARY_SLICE
 
 namespace {
 
@@ -425,10 +428,14 @@ template <class P, ReferencePoint Ref> void check_non_finite() {
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("non-finite states and loads throw NonFiniteError naming the cause",
-                        "[body][rigid_body]", tumble::test::AllParameterizations) {
+                        "[body][rigid_body]", TUMBLE_TEST_PARAMETERIZATIONS) {
   check_non_finite<TestType, ReferencePoint::centroid>();
   check_non_finite<TestType, ReferencePoint::offset>();
 }
+
+// Not per parameterization: compiled once, in the primary slice (tests/CMakeLists.txt compiles
+// this file in slices of the parameterizations).
+#if TUMBLE_TEST_PRIMARY_SLICE
 
 #ifdef TUMBLE_TEST_HAVE_EULER_ANGLES
 TEST_CASE("Euler angles exactly at gimbal lock throw NonFiniteError naming the singularity",
@@ -467,97 +474,4 @@ TEST_CASE("a NaN position read by a spring throws NonFiniteError naming a non-fi
                       TUMBLE_CONTAINS("non-finite"));
 }
 
-// --- other scalar types --------------------------------------------------------------------------
-
-// Every member of these instantiations must compile.
-template class tumble::RigidBody<tumble::EulerParameters, ReferencePoint::centroid, float>;
-template class tumble::RigidBody<tumble::EulerParameters, ReferencePoint::offset, float>;
-template class tumble::RigidBody<tumble::EulerParameters, ReferencePoint::offset, long double>;
-template class tumble::RigidBody<tumble::EulerParameters, ReferencePoint::centroid, AD>;
-template class tumble::RigidBody<tumble::EulerParameters, ReferencePoint::offset, AD>;
-#ifdef TUMBLE_TEST_HAVE_EULER_ANGLES
-template class tumble::RigidBody<tumble::EulerZYX, ReferencePoint::offset, float>;
-template class tumble::RigidBody<tumble::EulerZXZ, ReferencePoint::offset, AD>;
-#endif
-#ifdef TUMBLE_TEST_HAVE_RODRIGUES
-template class tumble::RigidBody<tumble::RodriguesParameters, ReferencePoint::offset, AD>;
-#endif
-#ifdef TUMBLE_TEST_HAVE_MRP
-template class tumble::RigidBody<tumble::ModifiedRodriguesParameters, ReferencePoint::offset,
-                                 float>;
-#endif
-#ifdef TUMBLE_TEST_HAVE_ROTATION_VECTOR
-template class tumble::RigidBody<tumble::RotationVector, ReferencePoint::offset, AD>;
-#endif
-
-namespace {
-
-template <class S, class Derived> auto to(const Eigen::MatrixBase<Derived>& x) {
-  return x.template cast<S>().eval();
-}
-template <class Derived> Eigen::MatrixXd values(const Eigen::MatrixBase<Derived>& x) {
-  Eigen::MatrixXd v(x.rows(), x.cols());
-  for (Eigen::Index j = 0; j < x.cols(); ++j) {
-    for (Eigen::Index i = 0; i < x.rows(); ++i) {
-      v(i, j) = static_cast<double>(tumble::detail::value(x(i, j)));
-    }
-  }
-  return v;
-}
-
-template <class P, ReferencePoint Ref> void check_scalar_types() {
-  // A well-conditioned body (sides in [0.8, 1.2]), so that float's error is not dominated by
-  // the conditioning of I_g.
-  tumble::test::Random rng(108);
-  const auto model = tumble::test::random_body(rng, offset(Ref), 0.8, 1.2);
-  const Body<P, Ref> body_d(tumble::test::mass_properties(model));
-  const tumble::RigidBody<P, Ref, float> body_f(tumble::test::mass_properties<float>(model));
-  const tumble::RigidBody<P, Ref, AD> body_ad(tumble::test::mass_properties<AD>(model));
-  const double feps = std::numeric_limits<float>::epsilon();
-  double worst_f = 0, worst_ad = 0;
-  for (int i = 0; i < 10; ++i) {
-    const auto s = tumble::test::random_state<P>(rng);
-    const auto loads = tumble::test::random_loads(rng);
-    INFO(P::name << " " << tumble::test::ref_name(Ref) << " state " << i);
-    // Round the inputs to float first, so that both compute from the same numbers.
-    const Coords<P> q = to<double>(to<float>(s.q));
-    const Coords<P> qdot = to<double>(to<float>(s.qdot));
-    const auto run = [&](const auto& body, const auto& qs, const auto& qds, const auto& t) {
-      return tumble::test::with_elements(
-          loads, [&](const auto&... e) { return tumble::accelerations(body, t, qs, qds, e...); });
-    };
-    const Coords<P> qdd_d = run(body_d, q, qdot, 0.0);
-
-    const double ef =
-        std::max({rel_error(values(body_f.mass_matrix(to<float>(q))),
-                            Eigen::MatrixXd(body_d.mass_matrix(q))),
-                  rel_error(values(body_f.centrifugal_coriolis(to<float>(q), to<float>(qdot))),
-                            Eigen::MatrixXd(body_d.centrifugal_coriolis(q, qdot))),
-                  rel_error(values(run(body_f, to<float>(q), to<float>(qdot), 0.0f)),
-                            Eigen::MatrixXd(qdd_d))});
-    // float: the same few hundred roundings as kTol, at float's epsilon.
-    CHECK(ef < 256 * feps);
-    worst_f = std::max(worst_f, ef);
-
-    const double ead = std::max(
-        {rel_error(values(body_ad.mass_matrix(to<AD>(q))), Eigen::MatrixXd(body_d.mass_matrix(q))),
-         rel_error(values(body_ad.centrifugal_coriolis(to<AD>(q), to<AD>(qdot))),
-                   Eigen::MatrixXd(body_d.centrifugal_coriolis(q, qdot))),
-         rel_error(values(run(body_ad, to<AD>(q), to<AD>(qdot), AD(0.0))),
-                   Eigen::MatrixXd(qdd_d))});
-    // AD values are computed by the same operations as double (up to Eigen's vectorized
-    // summation order).
-    CHECK(ead < 16 * kEps);
-    worst_ad = std::max(worst_ad, ead);
-  }
-  record_error("float vs double (M, f_v, qddot)", P::name, Ref, worst_f);
-  record_error("AD values vs double (M, f_v, qddot)", P::name, Ref, worst_ad);
-}
-
-}  // namespace
-
-TEMPLATE_LIST_TEST_CASE("float and AD bodies agree with double to the type's precision",
-                        "[body][rigid_body]", tumble::test::AllParameterizations) {
-  check_scalar_types<TestType, ReferencePoint::centroid>();
-  check_scalar_types<TestType, ReferencePoint::offset>();
-}
+#endif  // TUMBLE_TEST_PRIMARY_SLICE

@@ -29,6 +29,7 @@
 
 #include "support/catch.hpp"
 #include "support/finite_difference.hpp"
+#include "support/numeric.hpp"
 #include "support/random.hpp"
 #include "tumble/core/math.hpp"
 #include "tumble/orientation/concept.hpp"
@@ -70,7 +71,7 @@ using P = EulerParameters;
 constexpr LD kEval = 32;
 constexpr LD kTwo = 64;
 
-template <class S> LD eps() { return static_cast<LD>(tumble::detail::epsilon<S>()); }
+using tumble::test::eps;
 template <class S> LD val(const S& x) { return static_cast<LD>(tumble::detail::value(x)); }
 template <class D> auto to_ld(const Eigen::MatrixBase<D>& m) {
   return m.unaryExpr([](const typename D::Scalar& x) { return val(x); }).eval();

@@ -19,7 +19,10 @@
 #include <Eigen/Geometry>
 #include <unsupported/Eigen/AutoDiff>
 
+#include "support/axis_angle_sample.hpp"
 #include "support/catch.hpp"
+#include "support/finite_difference.hpp"
+#include "support/numeric.hpp"
 #include "support/random.hpp"
 #include "tumble/core/math.hpp"
 
@@ -30,68 +33,32 @@ using tumble::Matrix3;
 using tumble::Vector3;
 using AD = Eigen::AutoDiffScalar<Eigen::VectorXd>;
 using LD = long double;
+using tumble::test::ad_derivative;
+using tumble::test::ad_derivatives;
+using tumble::test::along;
+using tumble::test::eps;
+using tumble::test::five_point_derivative;
+using tumble::test::kFivePointTol;
+using tumble::test::rel_err;
 using Vector3ld = Vector3<LD>;
 using Matrix3ld = Matrix3<LD>;
 
 const LD kPi = std::acos(-1.0L);
 
-template <class S> LD eps() { return static_cast<LD>(std::numeric_limits<S>::epsilon()); }
-
-/// |a - b| / max(|b|, 1) in long double (Frobenius norm for matrices).
-template <class A, class B> LD rel_err(const A& a, const B& b) {
-  const auto bl = b.template cast<LD>();
-  return (a.template cast<LD>() - bl).norm() / std::max(bl.norm(), 1.0L);
-}
-
-/// Five-point central difference of f(t) at t = 0 in long double: truncation ~h^4 |f^(5)| / 30
-/// (~3e-18 |f^(5)| for h = 1e-4), rounding ~eps_ld |f| / h ~ 1e-15 |f|.
-template <class F> auto derivative(F f, LD h = 1e-4L) {
-  using R = decltype(f(h));
-  return R((f(-2 * h) - f(2 * h) + 8 * (f(h) - f(-h))) / (12 * h));
-}
-/// Bound for the five-point differences of the smooth, moderate inputs used below.
-constexpr LD kFdTol = 1e-11L;
-
-/// A sample attitude: the MRP vector built from (phi, n) by the definition s = n tan(phi/4) and
-/// rounded to S; phi and n are then recomputed from the rounded s (in long double), so that the
-/// references describe exactly the coordinates under test.
-template <class S> struct Sample {
-  Vector3<S> s;
-  LD phi;
-  Vector3ld n;
-  Sample(LD phi0, const Vector3ld& n0) {
-    s = (std::tan(phi0 / 4) * n0.normalized()).template cast<S>();
-    const Vector3ld sl = s.template cast<LD>();
-    phi = 4 * std::atan(sl.norm());
-    n = sl.norm() > 0 ? Vector3ld(sl.normalized()) : Vector3ld::UnitX();
-  }
-  [[nodiscard]] Matrix3ld reference_rotation() const {
-    return Eigen::AngleAxis<LD>(phi, n).toRotationMatrix();
-  }
+/// The MRP vector by its definition s = n tan(phi/4) (|s| > 1 beyond pi), and the angle of a
+/// given s.
+struct MrpDefinition {
+  static LD magnitude(LD phi) { return std::tan(phi / 4); }
+  static LD angle(LD norm) { return 4 * std::atan(norm); }
 };
+template <class S> using Sample = tumble::test::AxisAngleSample<S, MrpDefinition>;
 
 /// Random attitudes with phi up to phi_max (|s| > 1 beyond pi), plus a few fixed ones.
 template <class S> std::vector<Sample<S>> samples(LD phi_max, int count) {
-  tumble::test::Random rnd(815);
-  std::vector<Sample<S>> out;
-  out.emplace_back(0.3L, Vector3ld(1, 0, 0));
-  out.emplace_back(2.0L, Vector3ld(0, 1, 0));
-  out.emplace_back(phi_max, Vector3ld(1, -2, 3));
-  for (int i = 0; i < count; ++i) {
-    out.emplace_back(static_cast<LD>(rnd.uniform(0.0, static_cast<double>(phi_max))),
-                     rnd.vector().cast<LD>());
-  }
-  return out;
+  return tumble::test::axis_angle_samples<Sample<S>>(
+      815, {{0.3L, Vector3ld(1, 0, 0)}, {2.0L, Vector3ld(0, 1, 0)}, {phi_max, Vector3ld(1, -2, 3)}},
+      phi_max, count);
 }
-
-Vector3<AD> seeded(const Eigen::Vector3d& x, const Eigen::Vector3d& dx) {
-  Vector3<AD> r;
-  for (int i = 0; i < 3; ++i) {
-    r(i) = AD(x(i), Eigen::VectorXd::Constant(1, dx(i)));
-  }
-  return r;
-}
-double der(const AD& x) { return x.derivatives().size() > 0 ? x.derivatives()(0) : 0.0; }
 
 }  // namespace
 
@@ -99,7 +66,7 @@ TEMPLATE_TEST_CASE("MRP R matches Eigen::AngleAxis and is a rotation",
                    "[orientation][modified_rodrigues]", float, double, long double) {
   using S = TestType;
   for (const auto& s : samples<S>(1.95L * kPi, 40)) {
-    const Matrix3<S> r = P::rotation(s.s);
+    const Matrix3<S> r = P::rotation(s.coords);
     CHECK(rel_err(r, s.reference_rotation()) < 16 * eps<S>());
     const Matrix3ld rl = r.template cast<LD>();
     CHECK((rl.transpose() * rl - Matrix3ld::Identity()).norm() < 16 * eps<S>());
@@ -114,32 +81,33 @@ TEMPLATE_TEST_CASE("MRP G, Gdot sdot and the inverse map against finite differen
   // Both sides of |s| = 1: phi up to 1.6 pi, |s| up to tan(0.4 pi) = 3.1.
   for (const auto& s : samples<S>(1.6L * kPi, 30)) {
     const Vector3<S> sd = rnd.vector().cast<S>();
-    const Vector3ld sl = s.s.template cast<LD>(), sdl = sd.template cast<LD>();
+    const Vector3ld sl = s.coords.template cast<LD>(), sdl = sd.template cast<LD>();
     // G = 4 / (1 + s.s)^2 M with M^T M = (1 + s.s)^2 I: a scaled rotation, condition number 1.
     const LD scale = 1 + sl.squaredNorm();
-    const LD tol = 64 * scale * eps<S>() + kFdTol;
+    const LD tol = 64 * scale * eps<S>() + kFivePointTol;
 
     // S(G sdot) = R^T Rdot, Rdot by finite differences of R (Eq. 1.5).
-    const Matrix3ld rdot =
-        derivative([&](LD t) { return Matrix3ld(P::rotation(Vector3ld(sl + t * sdl))); });
+    const Matrix3ld rdot = five_point_derivative(
+        [&](LD t) { return Matrix3ld(P::rotation(Vector3ld(sl + t * sdl))); });
     const Matrix3ld wx = P::rotation(sl).transpose() * rdot;
     const Vector3ld omega_fd(wx(2, 1), wx(0, 2), wx(1, 0));
-    const Vector3<S> omega = P::G(s.s) * sd;
+    const Vector3<S> omega = P::G(s.coords) * sd;
     CHECK(rel_err(omega, omega_fd) < tol);
-    CHECK((wx + wx.transpose()).norm() < kFdTol);  // R^T Rdot is skew
+    CHECK((wx + wx.transpose()).norm() < kFivePointTol);  // R^T Rdot is skew
 
     // Gdot sdot by finite differences of G (Eq. 1.10).
     const Vector3ld gdot_fd =
-        derivative([&](LD t) { return Vector3ld(P::G(Vector3ld(sl + t * sdl)) * sdl); });
-    CHECK(rel_err(P::Gdot_thetadot(s.s, sd), gdot_fd) < tol);
+        five_point_derivative([&](LD t) { return Vector3ld(P::G(Vector3ld(sl + t * sdl)) * sdl); });
+    CHECK(rel_err(P::Gdot_thetadot(s.coords, sd), gdot_fd) < tol);
 
     // The inverse map, both ways, and the accelerations: G sddot + Gdot sdot = alpha.
     const Vector3<S> w = rnd.vector().cast<S>();
     const Vector3<S> alpha = rnd.vector().cast<S>();
-    CHECK(rel_err(P::G(s.s) * P::thetadot(s.s, w), w) < 16 * eps<S>());
-    CHECK(rel_err(P::thetadot(s.s, omega), sd) < 16 * eps<S>());
-    const Vector3<S> sdd = P::thetaddot(s.s, sd, alpha);
-    CHECK(rel_err(Vector3<S>(P::G(s.s) * sdd + P::Gdot_thetadot(s.s, sd)), alpha) < 64 * eps<S>());
+    CHECK(rel_err(P::G(s.coords) * P::thetadot(s.coords, w), w) < 16 * eps<S>());
+    CHECK(rel_err(P::thetadot(s.coords, omega), sd) < 16 * eps<S>());
+    const Vector3<S> sdd = P::thetaddot(s.coords, sd, alpha);
+    CHECK(rel_err(Vector3<S>(P::G(s.coords) * sdd + P::Gdot_thetadot(s.coords, sd)), alpha) <
+          64 * eps<S>());
   }
 }
 
@@ -147,17 +115,17 @@ TEST_CASE("MRP AD derivatives of R and G sdot", "[orientation][modified_rodrigue
   tumble::test::Random rnd(5);
   std::vector<Eigen::Vector3d> points{Eigen::Vector3d::Zero(), Eigen::Vector3d(1e-8, -2e-8, 0)};
   for (const auto& s : samples<double>(1.8L * kPi, 20)) {
-    points.push_back(s.s);
+    points.push_back(s.coords);
   }
   for (const auto& s : points) {
     const Eigen::Vector3d sd = rnd.vector();
-    const Vector3<AD> sa = seeded(s, sd);
+    const Vector3<AD> sa = along(s, sd);
     // d/dt R(s + t sdot) = R S(G sdot)  (S(omega) = R^T Rdot, Eq. 1.5).
     const Matrix3<AD> ra = P::rotation(sa);
     Eigen::Matrix3d rdot;
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) {
-        rdot(i, j) = der(ra(i, j));
+        rdot(i, j) = ad_derivative(ra(i, j));
       }
     }
     const Eigen::Vector3d omega = P::G(s) * sd;
@@ -166,12 +134,13 @@ TEST_CASE("MRP AD derivatives of R and G sdot", "[orientation][modified_rodrigue
           64 * eps<double>());
     // d/dt (G(s + t sdot) sdot) = Gdot sdot.
     const Vector3<AD> wa = P::G(sa) * sd.cast<AD>();
-    const Eigen::Vector3d gdot_ad(der(wa(0)), der(wa(1)), der(wa(2)));
+    const Eigen::Vector3d gdot_ad(ad_derivative(wa(0)), ad_derivative(wa(1)), ad_derivative(wa(2)));
     CHECK(rel_err(P::Gdot_thetadot(s, sd), gdot_ad) < 64 * scale * eps<double>());
     // The shadow rate is the derivative of the shadow set along sdot.
     if (s.squaredNorm() > 0) {
       const Vector3<AD> sha = P::shadow(sa);
-      const Eigen::Vector3d shd(der(sha(0)), der(sha(1)), der(sha(2)));
+      const Eigen::Vector3d shd(ad_derivative(sha(0)), ad_derivative(sha(1)),
+                                ad_derivative(sha(2)));
       CHECK(rel_err(P::shadow_rate(s, sd), shd) < 16 * eps<double>());
     }
   }
@@ -181,10 +150,10 @@ TEMPLATE_TEST_CASE("MRP round trips through R and the quaternion",
                    "[orientation][modified_rodrigues]", float, double, long double) {
   using S = TestType;
   for (const auto& s : samples<S>(1.9L * kPi, 40)) {
-    const Vector3<S> c = P::canonical(s.s);  // the set with |s| <= 1
+    const Vector3<S> c = P::canonical(s.coords);  // the set with |s| <= 1
     CHECK(c.template cast<LD>().norm() <= 1);
-    CHECK(rel_err(P::from_rotation(P::rotation(s.s)), c) < 32 * eps<S>());
-    const Eigen::Quaternion<S> q = P::to_quaternion(s.s);
+    CHECK(rel_err(P::from_rotation(P::rotation(s.coords)), c) < 32 * eps<S>());
+    const Eigen::Quaternion<S> q = P::to_quaternion(s.coords);
     CHECK(rel_err(P::from_quaternion(q), c) < 32 * eps<S>());
     // Against Eigen: q = (cos(phi/2), n sin(phi/2)), e0 < 0 beyond phi = pi (|s| > 1).
     const Eigen::Quaternion<LD> qe(Eigen::AngleAxis<LD>(s.phi, s.n));
@@ -206,26 +175,26 @@ TEMPLATE_TEST_CASE("MRP shadow set: same attitude, same angular velocity",
     if (s.phi < 1e-3L) {
       continue;  // the shadow of a near-identity is near infinity; tested below
     }
-    const Vector3<S> sh = P::shadow(s.s);
-    const Vector3ld sl = s.s.template cast<LD>();
+    const Vector3<S> sh = P::shadow(s.coords);
+    const Vector3ld sl = s.coords.template cast<LD>();
     // -s / |s|^2 is the rotation by phi - 2 pi about n: |shadow| = 1 / |s|, opposite direction.
     CHECK(rel_err(sh, Vector3ld(-sl / sl.squaredNorm())) < 4 * eps<S>());
     CHECK(rel_err(P::rotation(sh), s.reference_rotation()) < 16 * eps<S>());
-    CHECK(rel_err(P::shadow(sh), s.s) < 8 * eps<S>());
+    CHECK(rel_err(P::shadow(sh), s.coords) < 8 * eps<S>());
 
     // Same omega: G(s^S) sdot^S = G(s) sdot, and sdot^S = G(s^S)^-1 omega. G is a scaled
     // rotation (condition number 1), so both hold to a few roundings relative to their size.
     const Vector3<S> sd = rnd.vector().cast<S>();
-    const Vector3<S> shd = P::shadow_rate(s.s, sd);
-    const Vector3<S> omega = P::G(s.s) * sd;
+    const Vector3<S> shd = P::shadow_rate(s.coords, sd);
+    const Vector3<S> omega = P::G(s.coords) * sd;
     CHECK(rel_err(Vector3<S>(P::G(sh) * shd), omega) < 32 * eps<S>());
     CHECK(rel_err(shd, P::thetadot(sh, omega)) < 32 * eps<S>());
     // And it is the time derivative of the shadow set (finite differences, with the step scaled
     // to |s| since -s / |s|^2 varies on that length scale).
-    const Vector3ld shd_fd = derivative(
+    const Vector3ld shd_fd = five_point_derivative(
         [&](LD t) { return Vector3ld(P::shadow(Vector3ld(sl + t * sd.template cast<LD>()))); },
         1e-4L * std::min(1.0L, sl.norm()));
-    CHECK(rel_err(shd, shd_fd) < 32 * eps<S>() + kFdTol);
+    CHECK(rel_err(shd, shd_fd) < 32 * eps<S>() + kFivePointTol);
   }
   CHECK_THROWS_AS(P::shadow(Vector3<S>(Vector3<S>::Zero())), std::domain_error);
   CHECK_THROWS_AS(P::shadow_rate(Vector3<S>(Vector3<S>::Zero()), Vector3<S>(Vector3<S>::UnitX())),
@@ -278,20 +247,20 @@ TEMPLATE_TEST_CASE("MRP near the 360 degree singularity", "[orientation][modifie
   using S = TestType;
   // phi = 2 pi - 1e-5 rad: |s| = cot(2.5e-6) ~ 4e5.
   const Sample<S> s(2 * kPi - 1e-5L, Vector3ld(2, -3, 6));
-  const LD sn = s.s.template cast<LD>().norm();
-  CHECK(rel_err(P::rotation(s.s), s.reference_rotation()) < 16 * eps<S>());
+  const LD sn = s.coords.template cast<LD>().norm();
+  CHECK(rel_err(P::rotation(s.coords), s.reference_rotation()) < 16 * eps<S>());
   // 2 pi - phi = 4 atan(1 / |s|), to full relative accuracy.
   const LD dist = 4 * std::atan(1 / sn);
-  CHECK(std::abs(static_cast<LD>(P::singularity_distance(s.s)) - dist) < 8 * eps<S>() * dist);
+  CHECK(std::abs(static_cast<LD>(P::singularity_distance(s.coords)) - dist) < 8 * eps<S>() * dist);
   CHECK(static_cast<double>(dist) == Approx(1e-5).epsilon(1e-3));
   // The shadow set is a near-identity set with the same R, far from the singularity.
-  const Vector3<S> c = P::canonical(s.s);
+  const Vector3<S> c = P::canonical(s.coords);
   CHECK(static_cast<LD>(c.norm()) < 1e-5L);
   CHECK(rel_err(P::rotation(c), s.reference_rotation()) < 16 * eps<S>());
   CHECK(P::singularity_distance(c) > S(6.28));
   // The maps stay mutually inverse (G is a scaled rotation).
   const Vector3<S> w(S(0.3), S(-0.1), S(0.2));
-  CHECK(rel_err(P::G(s.s) * P::thetadot(s.s, w), w) < 16 * eps<S>());
+  CHECK(rel_err(P::G(s.coords) * P::thetadot(s.coords, w), w) < 16 * eps<S>());
 }
 
 TEST_CASE("MRP AD with constant and variable arguments mixed",
@@ -342,14 +311,15 @@ TEST_CASE("MRP AD derivative of the distance to the singularity",
     const Eigen::Vector3d n = rnd.vector().normalized();
     const Eigen::Vector3d th = (std::tan(phi / 4)) * n;
     const Eigen::Vector3d thd = rnd.vector();
-    const AD dist = P::singularity_distance(seeded(th, thd));
+    const AD dist = P::singularity_distance(along(th, thd));
     const Vector3ld thl = th.cast<LD>(), thdl = thd.cast<LD>();
-    const LD fd = derivative(
+    const LD fd = five_point_derivative(
         [&](LD t) {
           return Eigen::Matrix<LD, 1, 1>(P::singularity_distance(Vector3ld(thl + t * thdl)));
         },
         1e-4L * std::min(1.0L, thl.norm() / thdl.norm()))(0);  // |.| varies on the scale |theta|
     INFO("phi = " << phi);
-    CHECK(std::abs(der(dist) - fd) < 64 * eps<double>() * std::max(1.0L, std::abs(fd)) + kFdTol);
+    CHECK(std::abs(ad_derivative(dist) - fd) <
+          64 * eps<double>() * std::max(1.0L, std::abs(fd)) + kFivePointTol);
   }
 }

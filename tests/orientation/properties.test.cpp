@@ -67,6 +67,7 @@
 #include "orientation/reference/reference_values.hpp"
 #include "support/catch.hpp"
 #include "support/finite_difference.hpp"
+#include "support/numeric.hpp"
 #include "support/parameterizations.hpp"
 #include "support/random.hpp"
 #include "support/type_product.hpp"
@@ -90,8 +91,12 @@ using tumble::Vector4;
 using LD = long double;
 
 using Scalars = std::tuple<double, float, AD>;
-using Cases = test::Product<test::AllParameterizations, Scalars>;
-using Pairs = test::Product<test::AllParameterizations, test::AllParameterizations>;
+// The build compiles this file in slices of the parameterizations (tests/CMakeLists.txt); the
+// pairs are sliced by their first member.
+#define TUMBLE_CASES TUMBLE_TEST_SLICED_NAME(Cases)
+#define TUMBLE_PAIRS TUMBLE_TEST_SLICED_NAME(Pairs)
+using TUMBLE_CASES = test::Product<TUMBLE_TEST_PARAMETERIZATIONS, Scalars>;
+using TUMBLE_PAIRS = test::Product<TUMBLE_TEST_PARAMETERIZATIONS, test::AllParameterizations>;
 
 template <class P, class S> using Coords = typename P::template Coords<S>;
 template <class P, class S> using GMatrix = Matrix<S, 3, P::size>;
@@ -114,7 +119,7 @@ template <class S> constexpr std::string_view scalar_name() {
   }
 }
 
-template <class S> LD eps() { return static_cast<LD>(detail::epsilon<S>()); }
+using test::eps;
 const LD kEpsD = eps<double>();
 
 /// The value type of S (double for AD).
@@ -602,7 +607,7 @@ template <class P> LD identity_distance() {
 }
 
 TEMPLATE_LIST_TEST_CASE("properties: static interface and the identity",
-                        "[orientation][properties]", Cases) {
+                        "[orientation][properties]", TUMBLE_CASES) {
   using P = typename TestType::First;
   using S = typename TestType::Second;
   using C = Coords<P, S>;
@@ -657,7 +662,7 @@ TEMPLATE_LIST_TEST_CASE("properties: static interface and the identity",
 
 TEMPLATE_LIST_TEST_CASE("properties: round trips rotation -> coordinates -> rotation and through "
                         "the quaternion",
-                        "[orientation][properties]", Cases) {
+                        "[orientation][properties]", TUMBLE_CASES) {
   using P = typename TestType::First;
   using S = typename TestType::Second;
   using C = Coords<P, S>;
@@ -685,7 +690,7 @@ TEMPLATE_LIST_TEST_CASE("properties: round trips rotation -> coordinates -> rota
 }
 
 TEMPLATE_LIST_TEST_CASE("properties: convert<To, From> reproduces R for every pair",
-                        "[orientation][properties]", Pairs) {
+                        "[orientation][properties]", TUMBLE_PAIRS) {
   using To = typename TestType::First;
   using From = typename TestType::Second;
   INFO(From::name << " -> " << To::name);
@@ -703,7 +708,7 @@ TEMPLATE_LIST_TEST_CASE("properties: convert<To, From> reproduces R for every pa
 }
 
 TEMPLATE_LIST_TEST_CASE("properties: R is orthonormal with det +1", "[orientation][properties]",
-                        Cases) {
+                        TUMBLE_CASES) {
   using P = typename TestType::First;
   using S = typename TestType::Second;
   INFO(P::name << " in " << scalar_name<S>());
@@ -717,7 +722,7 @@ TEMPLATE_LIST_TEST_CASE("properties: R is orthonormal with det +1", "[orientatio
 // ------------------------------------------------------------------------------------------------
 
 TEMPLATE_LIST_TEST_CASE("properties: kinematics S(G thetadot) = R^T Rdot",
-                        "[orientation][properties]", Cases) {
+                        "[orientation][properties]", TUMBLE_CASES) {
   using P = typename TestType::First;
   using S = typename TestType::Second;
   INFO(P::name << " in " << scalar_name<S>());
@@ -728,7 +733,7 @@ TEMPLATE_LIST_TEST_CASE("properties: kinematics S(G thetadot) = R^T Rdot",
 }
 
 TEMPLATE_LIST_TEST_CASE("properties: Gdot thetadot against differences and AD of G",
-                        "[orientation][properties]", Cases) {
+                        "[orientation][properties]", TUMBLE_CASES) {
   using P = typename TestType::First;
   using S = typename TestType::Second;
   INFO(P::name << " in " << scalar_name<S>());
@@ -739,7 +744,7 @@ TEMPLATE_LIST_TEST_CASE("properties: Gdot thetadot against differences and AD of
 }
 
 TEMPLATE_LIST_TEST_CASE("properties: inverse map G thetadot(theta, omega) = omega",
-                        "[orientation][properties]", Cases) {
+                        "[orientation][properties]", TUMBLE_CASES) {
   using P = typename TestType::First;
   using S = typename TestType::Second;
   INFO(P::name << " in " << scalar_name<S>());
@@ -750,7 +755,7 @@ TEMPLATE_LIST_TEST_CASE("properties: inverse map G thetadot(theta, omega) = omeg
 }
 
 TEMPLATE_LIST_TEST_CASE("properties: thetaddot satisfies G thetaddot + Gdot thetadot = alpha",
-                        "[orientation][properties]", Cases) {
+                        "[orientation][properties]", TUMBLE_CASES) {
   using P = typename TestType::First;
   using S = typename TestType::Second;
   INFO(P::name << " in " << scalar_name<S>());
@@ -788,7 +793,7 @@ template <class P> std::vector<Coords<P, double>> near_zero_states() {
 }
 
 TEMPLATE_LIST_TEST_CASE("properties: near-zero inputs (and exactly zero, also for AD)",
-                        "[orientation][properties]", Cases) {
+                        "[orientation][properties]", TUMBLE_CASES) {
   using P = typename TestType::First;
   using S = typename TestType::Second;
   INFO(P::name << " in " << scalar_name<S>());
@@ -860,7 +865,7 @@ std::vector<NearSingular<P, S>> near_singular_states(LD delta, test::Random& rng
 
 TEMPLATE_LIST_TEST_CASE("properties: near-singular inputs: identities scaled by cond(G), and "
                         "singularity_distance",
-                        "[orientation][properties]", Cases) {
+                        "[orientation][properties]", TUMBLE_CASES) {
   using P = typename TestType::First;
   using S = typename TestType::Second;
   INFO(P::name << " in " << scalar_name<S>());
@@ -909,7 +914,7 @@ template <class P, class S> Matrix3<LD> attitude(const Coords<P, S>& theta) {
 }
 
 TEMPLATE_LIST_TEST_CASE("properties: canonical() keeps the attitude and satisfies the constraint",
-                        "[orientation][properties]", Cases) {
+                        "[orientation][properties]", TUMBLE_CASES) {
   using P = typename TestType::First;
   using S = typename TestType::Second;
   using C = Coords<P, S>;
@@ -949,7 +954,7 @@ TEMPLATE_LIST_TEST_CASE("properties: canonical() keeps the attitude and satisfie
 // ------------------------------------------------------------------------------------------------
 
 TEMPLATE_LIST_TEST_CASE("properties: every chart describes the same physical motion",
-                        "[orientation][properties]", Cases) {
+                        "[orientation][properties]", TUMBLE_CASES) {
   using P = typename TestType::First;
   using S = typename TestType::Second;
   using C = Coords<P, S>;
@@ -1041,7 +1046,7 @@ template <class M> Eigen::Matrix<typename M::Scalar, M::SizeAtCompileTime, 1> fl
 }
 
 TEMPLATE_LIST_TEST_CASE("properties: AD derivatives of every function match differences",
-                        "[orientation][properties]", test::AllParameterizations) {
+                        "[orientation][properties]", TUMBLE_TEST_PARAMETERIZATIONS) {
   using P = TestType;
   using CL = Coords<P, LD>;
   using CA = Coords<P, AD>;
@@ -1151,7 +1156,7 @@ TEMPLATE_LIST_TEST_CASE("properties: AD derivatives of every function match diff
 /// shows). Run in a child process (run_isolated): Eigen asserts in debug builds when AD scalars
 /// with empty and non-empty derivative vectors meet inside one expression.
 TEMPLATE_LIST_TEST_CASE("properties: AD derivative of singularity_distance matches differences",
-                        "[orientation][properties]", test::AllParameterizations) {
+                        "[orientation][properties]", TUMBLE_TEST_PARAMETERIZATIONS) {
   using P = TestType;
   using CL = Coords<P, LD>;
   INFO(P::name);
@@ -1250,7 +1255,7 @@ template <class P, class S> ReferenceErrors reference_errors() {
 }
 
 TEMPLATE_LIST_TEST_CASE("properties: 50-digit reference values (mpmath, from the definitions)",
-                        "[orientation][properties]", test::AllParameterizations) {
+                        "[orientation][properties]", TUMBLE_TEST_PARAMETERIZATIONS) {
   using P = TestType;
   INFO(P::name);
   const ReferenceErrors e = reference_errors<P, double>();
@@ -1289,6 +1294,7 @@ template <class P> void report_row() {
               double(w.gdot), double(w.inverse), double(w.thetaddot));
 }
 
+#if TUMBLE_TEST_PRIMARY_SLICE
 TEST_CASE("properties: error table per parameterization", "[.][report][orientation][properties]") {
   std::printf(
       "\nWorst errors per parameterization.\n"
@@ -1309,6 +1315,7 @@ TEST_CASE("properties: error table per parameterization", "[.][report][orientati
   std::printf("\n");
   SUCCEED();
 }
+#endif
 
 // ------------------------------------------------------------------------------------------------
 // AD arguments that mix constants and variables
@@ -1337,7 +1344,7 @@ bool same_ad(const std::string& where, const char* what, const YA& a, const YB& 
 
 TEMPLATE_LIST_TEST_CASE("properties: AD arguments mixing constants (empty derivative vectors) "
                         "and variables",
-                        "[orientation][properties]", test::AllParameterizations) {
+                        "[orientation][properties]", TUMBLE_TEST_PARAMETERIZATIONS) {
   using P = TestType;
   using CA = Coords<P, AD>;
   INFO(P::name);

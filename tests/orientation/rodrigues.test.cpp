@@ -18,7 +18,10 @@
 #include <Eigen/Geometry>
 #include <unsupported/Eigen/AutoDiff>
 
+#include "support/axis_angle_sample.hpp"
 #include "support/catch.hpp"
+#include "support/finite_difference.hpp"
+#include "support/numeric.hpp"
 #include "support/random.hpp"
 #include "tumble/core/errors.hpp"
 #include "tumble/core/math.hpp"
@@ -30,69 +33,33 @@ using tumble::Matrix3;
 using tumble::Vector3;
 using AD = Eigen::AutoDiffScalar<Eigen::VectorXd>;
 using LD = long double;
+using tumble::test::ad_derivative;
+using tumble::test::ad_derivatives;
+using tumble::test::along;
+using tumble::test::eps;
+using tumble::test::five_point_derivative;
+using tumble::test::kFivePointTol;
+using tumble::test::rel_err;
 using Vector3ld = Vector3<LD>;
 using Matrix3ld = Matrix3<LD>;
 
 const LD kPi = std::acos(-1.0L);
 const double kPid = std::acos(-1.0);
 
-template <class S> LD eps() { return static_cast<LD>(std::numeric_limits<S>::epsilon()); }
-
-/// |a - b| / max(|b|, 1) in long double (Frobenius norm for matrices).
-template <class A, class B> LD rel_err(const A& a, const B& b) {
-  const auto bl = b.template cast<LD>();
-  return (a.template cast<LD>() - bl).norm() / std::max(bl.norm(), 1.0L);
-}
-
-/// Five-point central difference of f(t) at t = 0 in long double: truncation ~h^4 |f^(5)| / 30
-/// (~3e-18 |f^(5)| for h = 1e-4), rounding ~eps_ld |f| / h ~ 1e-15 |f|.
-template <class F> auto derivative(F f, LD h = 1e-4L) {
-  using R = decltype(f(h));
-  return R((f(-2 * h) - f(2 * h) + 8 * (f(h) - f(-h))) / (12 * h));
-}
-/// Bound for the five-point differences of the smooth, moderate inputs used below.
-constexpr LD kFdTol = 1e-11L;
-
-/// A sample attitude: the angle phi in [0, pi) and the unit axis n, with the Gibbs vector built
-/// from the definition, rounded to S; phi and n are then recomputed from the rounded g (in long
-/// double), so that the references describe exactly the coordinates under test.
-template <class S> struct Sample {
-  Vector3<S> g;
-  LD phi;
-  Vector3ld n;
-  Sample(LD phi0, const Vector3ld& n0) {
-    g = (std::tan(phi0 / 2) * n0.normalized()).template cast<S>();
-    const Vector3ld gl = g.template cast<LD>();
-    phi = 2 * std::atan(gl.norm());
-    n = gl.norm() > 0 ? Vector3ld(gl.normalized()) : Vector3ld::UnitX();
-  }
-  [[nodiscard]] Matrix3ld reference_rotation() const {
-    return Eigen::AngleAxis<LD>(phi, n).toRotationMatrix();
-  }
+/// The Gibbs vector by its definition g = n tan(phi/2), and the angle of a given g.
+struct GibbsDefinition {
+  static LD magnitude(LD phi) { return std::tan(phi / 2); }
+  static LD angle(LD norm) { return 2 * std::atan(norm); }
 };
+template <class S> using Sample = tumble::test::AxisAngleSample<S, GibbsDefinition>;
 
 /// Random attitudes with phi up to phi_max, plus a few fixed ones.
 template <class S> std::vector<Sample<S>> samples(LD phi_max, int count) {
-  tumble::test::Random rnd(4711);
-  std::vector<Sample<S>> out;
-  out.emplace_back(0.3L, Vector3ld(1, 0, 0));
-  out.emplace_back(1.2L, Vector3ld(0, 1, 0));
-  out.emplace_back(phi_max, Vector3ld(1, -2, 3));
-  for (int i = 0; i < count; ++i) {
-    out.emplace_back(static_cast<LD>(rnd.uniform(0.0, static_cast<double>(phi_max))),
-                     rnd.vector().cast<LD>());
-  }
-  return out;
+  return tumble::test::axis_angle_samples<Sample<S>>(
+      4711,
+      {{0.3L, Vector3ld(1, 0, 0)}, {1.2L, Vector3ld(0, 1, 0)}, {phi_max, Vector3ld(1, -2, 3)}},
+      phi_max, count);
 }
-
-Vector3<AD> seeded(const Eigen::Vector3d& x, const Eigen::Vector3d& dx) {
-  Vector3<AD> r;
-  for (int i = 0; i < 3; ++i) {
-    r(i) = AD(x(i), Eigen::VectorXd::Constant(1, dx(i)));
-  }
-  return r;
-}
-double der(const AD& x) { return x.derivatives().size() > 0 ? x.derivatives()(0) : 0.0; }
 
 }  // namespace
 
@@ -101,7 +68,7 @@ TEMPLATE_TEST_CASE("Gibbs R matches Eigen::AngleAxis and is a rotation", "[orien
   using S = TestType;
   // g from (phi, n) is exact in LD; R has a few roundings of size eps (1 + |g|^2) / (1 + |g|^2).
   for (const auto& s : samples<S>(0.95L * kPi, 40)) {
-    const Matrix3<S> r = P::rotation(s.g);
+    const Matrix3<S> r = P::rotation(s.coords);
     CHECK(rel_err(r, s.reference_rotation()) < 16 * eps<S>());
     const Matrix3ld rl = r.template cast<LD>();
     CHECK((rl.transpose() * rl - Matrix3ld::Identity()).norm() < 16 * eps<S>());
@@ -115,32 +82,32 @@ TEMPLATE_TEST_CASE("Gibbs G, Gdot gdot and the inverse map against finite differ
   tumble::test::Random rnd(17);
   for (const auto& s : samples<S>(0.8L * kPi, 30)) {
     const Vector3<S> gd = rnd.vector().cast<S>();
-    const Vector3ld gl = s.g.template cast<LD>(), gdl = gd.template cast<LD>();
+    const Vector3ld gl = s.coords.template cast<LD>(), gdl = gd.template cast<LD>();
     // Condition of the map near 180 deg: G ~ 1 / (1 + |g|^2), G^-1 ~ (1 + |g|^2).
     const LD kappa = 1 + gl.squaredNorm();
-    const LD tol = 64 * kappa * eps<S>() + kFdTol;
+    const LD tol = 64 * kappa * eps<S>() + kFivePointTol;
 
     // S(G gdot) = R^T Rdot, Rdot by finite differences of R (Eq. 1.5).
-    const Matrix3ld rdot =
-        derivative([&](LD t) { return Matrix3ld(P::rotation(Vector3ld(gl + t * gdl))); });
+    const Matrix3ld rdot = five_point_derivative(
+        [&](LD t) { return Matrix3ld(P::rotation(Vector3ld(gl + t * gdl))); });
     const Matrix3ld wx = P::rotation(gl).transpose() * rdot;
     const Vector3ld omega_fd(wx(2, 1), wx(0, 2), wx(1, 0));
-    const Vector3<S> omega = P::G(s.g) * gd;
+    const Vector3<S> omega = P::G(s.coords) * gd;
     CHECK(rel_err(omega, omega_fd) < tol);
-    CHECK((wx + wx.transpose()).norm() < kFdTol);  // R^T Rdot is skew
+    CHECK((wx + wx.transpose()).norm() < kFivePointTol);  // R^T Rdot is skew
 
     // Gdot gdot by finite differences of G (Eq. 1.10).
     const Vector3ld gdot_fd =
-        derivative([&](LD t) { return Vector3ld(P::G(Vector3ld(gl + t * gdl)) * gdl); });
-    CHECK(rel_err(P::Gdot_thetadot(s.g, gd), gdot_fd) < tol);
+        five_point_derivative([&](LD t) { return Vector3ld(P::G(Vector3ld(gl + t * gdl)) * gdl); });
+    CHECK(rel_err(P::Gdot_thetadot(s.coords, gd), gdot_fd) < tol);
 
     // The inverse map, both ways, and the accelerations: G gddot + Gdot gdot = alpha.
     const Vector3<S> w = rnd.vector().cast<S>();
     const Vector3<S> alpha = rnd.vector().cast<S>();
-    CHECK(rel_err(P::G(s.g) * P::thetadot(s.g, w), w) < 16 * kappa * eps<S>());
-    CHECK(rel_err(P::thetadot(s.g, omega), gd) < 16 * kappa * eps<S>());
-    const Vector3<S> gdd = P::thetaddot(s.g, gd, alpha);
-    CHECK(rel_err(Vector3<S>(P::G(s.g) * gdd + P::Gdot_thetadot(s.g, gd)), alpha) <
+    CHECK(rel_err(P::G(s.coords) * P::thetadot(s.coords, w), w) < 16 * kappa * eps<S>());
+    CHECK(rel_err(P::thetadot(s.coords, omega), gd) < 16 * kappa * eps<S>());
+    const Vector3<S> gdd = P::thetaddot(s.coords, gd, alpha);
+    CHECK(rel_err(Vector3<S>(P::G(s.coords) * gdd + P::Gdot_thetadot(s.coords, gd)), alpha) <
           64 * kappa * eps<S>());
   }
 }
@@ -149,17 +116,17 @@ TEST_CASE("Gibbs AD derivatives of R and G gdot", "[orientation][rodrigues]") {
   tumble::test::Random rnd(23);
   std::vector<Eigen::Vector3d> points{Eigen::Vector3d::Zero(), Eigen::Vector3d(1e-8, -2e-8, 0)};
   for (const auto& s : samples<double>(0.9L * kPi, 20)) {
-    points.push_back(s.g);
+    points.push_back(s.coords);
   }
   for (const auto& g : points) {
     const Eigen::Vector3d gd = rnd.vector();
-    const Vector3<AD> ga = seeded(g, gd);
+    const Vector3<AD> ga = along(g, gd);
     // d/dt R(g + t gdot) = R S(G gdot)  (S(omega) = R^T Rdot, Eq. 1.5).
     const Matrix3<AD> ra = P::rotation(ga);
     Eigen::Matrix3d rdot;
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) {
-        rdot(i, j) = der(ra(i, j));
+        rdot(i, j) = ad_derivative(ra(i, j));
       }
     }
     const Eigen::Vector3d omega = P::G(g) * gd;
@@ -168,10 +135,10 @@ TEST_CASE("Gibbs AD derivatives of R and G gdot", "[orientation][rodrigues]") {
     CHECK(rel_err(rdot, expected) < 64 * eps<double>());
     // d/dt (G(g + t gdot) gdot) = Gdot gdot.
     const Vector3<AD> wa = P::G(ga) * gd.cast<AD>();
-    const Eigen::Vector3d gdot_ad(der(wa(0)), der(wa(1)), der(wa(2)));
+    const Eigen::Vector3d gdot_ad(ad_derivative(wa(0)), ad_derivative(wa(1)), ad_derivative(wa(2)));
     CHECK(rel_err(P::Gdot_thetadot(g, gd), gdot_ad) < 64 * scale * eps<double>());
     // The AD instantiation gives the same values as double.
-    const Vector3<AD> gdd_a = P::Gdot_thetadot(ga, seeded(gd, gd));
+    const Vector3<AD> gdd_a = P::Gdot_thetadot(ga, along(gd, gd));
     const Eigen::Vector3d gdd_v(gdd_a(0).value(), gdd_a(1).value(), gdd_a(2).value());
     CHECK(rel_err(gdd_v, P::Gdot_thetadot(g, gd)) < 4 * eps<double>());
   }
@@ -182,10 +149,10 @@ TEMPLATE_TEST_CASE("Gibbs round trips through R and the quaternion", "[orientati
   using S = TestType;
   for (const auto& s : samples<S>(0.9L * kPi, 40)) {
     // e0 = cos(phi/2) >= 0.16: an absolute error eps in e0 is a relative eps / e0 in g.
-    const LD tol = 32 * eps<S>() * std::sqrt(1 + s.g.template cast<LD>().squaredNorm());
-    CHECK(rel_err(P::from_rotation(P::rotation(s.g)), s.g) < tol);
-    const Eigen::Quaternion<S> q = P::to_quaternion(s.g);
-    CHECK(rel_err(P::from_quaternion(q), s.g) < tol);
+    const LD tol = 32 * eps<S>() * std::sqrt(1 + s.coords.template cast<LD>().squaredNorm());
+    CHECK(rel_err(P::from_rotation(P::rotation(s.coords)), s.coords) < tol);
+    const Eigen::Quaternion<S> q = P::to_quaternion(s.coords);
+    CHECK(rel_err(P::from_quaternion(q), s.coords) < tol);
     // Against Eigen: the same rotation, q with e0 > 0.
     const Eigen::Quaternion<LD> qe(Eigen::AngleAxis<LD>(s.phi, s.n));
     CHECK(rel_err(q.coeffs(), qe.coeffs()) < 8 * eps<S>());
@@ -193,9 +160,9 @@ TEMPLATE_TEST_CASE("Gibbs round trips through R and the quaternion", "[orientati
     // g does not depend on the sign or the norm of q.
     const Eigen::Quaternion<S> q2(S(-2.5) * q.w(), S(-2.5) * q.x(), S(-2.5) * q.y(),
                                   S(-2.5) * q.z());
-    CHECK(rel_err(P::from_quaternion(q2), s.g) < tol);
+    CHECK(rel_err(P::from_quaternion(q2), s.coords) < tol);
     // The identity is the only canonical choice.
-    CHECK(P::canonical(s.g) == s.g);
+    CHECK(P::canonical(s.coords) == s.coords);
   }
 }
 
@@ -223,19 +190,20 @@ TEMPLATE_TEST_CASE("Gibbs near the 180 degree singularity", "[orientation][rodri
   // 179.9999 degrees about a skew axis: |g| = tan(89.99995 deg) ~ 1.1e6.
   const LD phi0 = (179.9999L / 180) * kPi;
   const Sample<S> s(phi0, Vector3ld(2, -3, 6));
-  const LD gn = s.g.template cast<LD>().norm();
+  const LD gn = s.coords.template cast<LD>().norm();
 
   // R is still accurate to a few eps: it depends on g only through g/|g| and 1/(1+|g|^2).
-  CHECK(rel_err(P::rotation(s.g), s.reference_rotation()) < 16 * eps<S>());
+  CHECK(rel_err(P::rotation(s.coords), s.reference_rotation()) < 16 * eps<S>());
   // The distance, pi - phi = 2 atan(1 / |g|), keeps full relative accuracy.
   const LD dist = 2 * std::atan(1 / gn);
-  CHECK(std::abs(static_cast<LD>(P::singularity_distance(s.g)) - dist) < 8 * eps<S>() * dist);
+  CHECK(std::abs(static_cast<LD>(P::singularity_distance(s.coords)) - dist) < 8 * eps<S>() * dist);
   CHECK(dist == Approx(static_cast<double>(kPi - phi0)).epsilon(1e-3));
   // The maps are huge (G ~ 2 / |g|^2 off the axis) but still mutually inverse, up to the
   // condition number of G, sqrt(1 + |g|^2) (the rounding of gdot ~ |g|^2 omega is amplified by
   // the factor |g| of I - S(g) in G).
   const Vector3<S> w(S(0.3), S(-0.1), S(0.2));
-  CHECK(rel_err(P::G(s.g) * P::thetadot(s.g, w), w) < 16 * eps<S>() * std::sqrt(1 + gn * gn));
+  CHECK(rel_err(P::G(s.coords) * P::thetadot(s.coords, w), w) <
+        16 * eps<S>() * std::sqrt(1 + gn * gn));
   // A rotation by exactly 180 degrees has no Gibbs vector.
   const Eigen::Quaternion<S> half_turn(S(0), S(0), S(0.6), S(0.8));
   CHECK_THROWS_AS(P::from_quaternion(half_turn), tumble::NonFiniteError);
@@ -301,14 +269,15 @@ TEST_CASE("Gibbs AD derivative of the distance to the singularity", "[orientatio
     const Eigen::Vector3d n = rnd.vector().normalized();
     const Eigen::Vector3d th = (std::tan(phi / 2)) * n;
     const Eigen::Vector3d thd = rnd.vector();
-    const AD dist = P::singularity_distance(seeded(th, thd));
+    const AD dist = P::singularity_distance(along(th, thd));
     const Vector3ld thl = th.cast<LD>(), thdl = thd.cast<LD>();
-    const LD fd = derivative(
+    const LD fd = five_point_derivative(
         [&](LD t) {
           return Eigen::Matrix<LD, 1, 1>(P::singularity_distance(Vector3ld(thl + t * thdl)));
         },
         1e-4L * std::min(1.0L, thl.norm() / thdl.norm()))(0);  // |.| varies on the scale |theta|
     INFO("phi = " << phi);
-    CHECK(std::abs(der(dist) - fd) < 64 * eps<double>() * std::max(1.0L, std::abs(fd)) + kFdTol);
+    CHECK(std::abs(ad_derivative(dist) - fd) <
+          64 * eps<double>() * std::max(1.0L, std::abs(fd)) + kFivePointTol);
   }
 }

@@ -19,7 +19,10 @@
 #include <Eigen/Geometry>
 #include <unsupported/Eigen/AutoDiff>
 
+#include "support/axis_angle_sample.hpp"
 #include "support/catch.hpp"
+#include "support/finite_difference.hpp"
+#include "support/numeric.hpp"
 #include "support/random.hpp"
 #include "tumble/core/math.hpp"
 
@@ -30,74 +33,37 @@ using tumble::Matrix3;
 using tumble::Vector3;
 using AD = Eigen::AutoDiffScalar<Eigen::VectorXd>;
 using LD = long double;
+using tumble::test::ad_derivative;
+using tumble::test::ad_derivatives;
+using tumble::test::along;
+using tumble::test::eps;
+using tumble::test::five_point_derivative;
+using tumble::test::kFivePointTol;
+using tumble::test::rel_err;
 using Vector3ld = Vector3<LD>;
 using Matrix3ld = Matrix3<LD>;
 
 const LD kPi = std::acos(-1.0L);
 
-template <class S> LD eps() { return static_cast<LD>(std::numeric_limits<S>::epsilon()); }
-
-/// |a - b| / max(|b|, 1) in long double (Frobenius norm for matrices).
-template <class A, class B> LD rel_err(const A& a, const B& b) {
-  const auto bl = b.template cast<LD>();
-  return (a.template cast<LD>() - bl).norm() / std::max(bl.norm(), 1.0L);
-}
-
-/// Five-point central difference of f(t) at t = 0 in long double: truncation ~h^4 |f^(5)| / 30
-/// (~3e-18 |f^(5)| for h = 1e-4), rounding ~eps_ld |f| / h ~ 1e-15 |f|.
-template <class F> auto derivative(F f, LD h = 1e-4L) {
-  using R = decltype(f(h));
-  return R((f(-2 * h) - f(2 * h) + 8 * (f(h) - f(-h))) / (12 * h));
-}
-/// Bound for the five-point differences of the smooth, moderate inputs used below.
-constexpr LD kFdTol = 1e-11L;
-
 /// The condition number of G = I - a S(v) + b S(v)^2: its singular values are 1 (along v) and
 /// sin(phi/2) / (phi/2) (twice, across v), so cond(G) = (phi/2) / |sin(phi/2)|.
 LD condition(LD phi) { return phi > 0 ? (phi / 2) / std::abs(std::sin(phi / 2)) : 1.0L; }
 
-/// A sample attitude: v = phi n rounded to S; phi and n are then recomputed from the rounded v
-/// (in long double), so that the references describe exactly the coordinates under test.
-template <class S> struct Sample {
-  Vector3<S> v;
-  LD phi;
-  Vector3ld n;
-  Sample(LD phi0, const Vector3ld& n0) {
-    v = (phi0 * n0.normalized()).template cast<S>();
-    const Vector3ld vl = v.template cast<LD>();
-    phi = vl.norm();
-    n = phi > 0 ? Vector3ld(vl / phi) : Vector3ld::UnitX();
-  }
-  [[nodiscard]] Matrix3ld reference_rotation() const {
-    return Eigen::AngleAxis<LD>(phi, n).toRotationMatrix();
-  }
+/// The rotation vector v = phi n, and the angle of a given v.
+struct RotationVectorDefinition {
+  static LD magnitude(LD phi) { return phi; }
+  static LD angle(LD norm) { return norm; }
 };
+template <class S> using Sample = tumble::test::AxisAngleSample<S, RotationVectorDefinition>;
 
 /// Random attitudes with phi up to phi_max, plus fixed ones at and near zero.
 template <class S> std::vector<Sample<S>> samples(LD phi_max, int count) {
-  tumble::test::Random rnd(2718);
-  std::vector<Sample<S>> out;
-  out.emplace_back(0.0L, Vector3ld(1, 0, 0));
-  out.emplace_back(1e-8L, Vector3ld(1, 2, -2));
-  out.emplace_back(1e-3L, Vector3ld(0, 1, 0));
-  out.emplace_back(phi_max, Vector3ld(1, -2, 3));
-  for (int i = 0; i < count; ++i) {
-    out.emplace_back(static_cast<LD>(rnd.uniform(0.0, static_cast<double>(phi_max))),
-                     rnd.vector().cast<LD>());
-  }
-  return out;
-}
-
-Vector3<AD> seeded(const Eigen::Vector3d& x, const Eigen::Vector3d& dx) {
-  Vector3<AD> r;
-  for (int i = 0; i < 3; ++i) {
-    r(i) = AD(x(i), Eigen::VectorXd::Constant(1, dx(i)));
-  }
-  return r;
-}
-double der(const AD& x) { return x.derivatives().size() > 0 ? x.derivatives()(0) : 0.0; }
-template <class Derived> Eigen::Vector3d ders(const Eigen::MatrixBase<Derived>& x) {
-  return Eigen::Vector3d(der(x(0)), der(x(1)), der(x(2)));
+  return tumble::test::axis_angle_samples<Sample<S>>(2718,
+                                                     {{0.0L, Vector3ld(1, 0, 0)},
+                                                      {1e-8L, Vector3ld(1, 2, -2)},
+                                                      {1e-3L, Vector3ld(0, 1, 0)},
+                                                      {phi_max, Vector3ld(1, -2, 3)}},
+                                                     phi_max, count);
 }
 
 // ---- high-precision references ------------------------------------------------------------------
@@ -409,7 +375,7 @@ TEMPLATE_TEST_CASE("Rotation vector R matches Eigen::AngleAxis and is a rotation
   using S = TestType;
   // phi up to 3 pi: R is periodic in phi.
   for (const auto& s : samples<S>(3 * kPi, 40)) {
-    const Matrix3<S> r = P::rotation(s.v);
+    const Matrix3<S> r = P::rotation(s.coords);
     CHECK(rel_err(r, s.reference_rotation()) < 16 * eps<S>());
     const Matrix3ld rl = r.template cast<LD>();
     CHECK((rl.transpose() * rl - Matrix3ld::Identity()).norm() < 16 * eps<S>());
@@ -423,31 +389,31 @@ TEMPLATE_TEST_CASE("Rotation vector G, Gdot vdot and the inverse map against fin
   tumble::test::Random rnd(8);
   for (const auto& s : samples<S>(1.5L * kPi, 30)) {
     const Vector3<S> vd = rnd.vector().cast<S>();
-    const Vector3ld vl = s.v.template cast<LD>(), vdl = vd.template cast<LD>();
+    const Vector3ld vl = s.coords.template cast<LD>(), vdl = vd.template cast<LD>();
     const LD kappa = condition(s.phi);
-    const LD tol = 64 * kappa * eps<S>() + kFdTol;
+    const LD tol = 64 * kappa * eps<S>() + kFivePointTol;
 
     // S(G vdot) = R^T Rdot, Rdot by finite differences of R (Eq. 1.5).
-    const Matrix3ld rdot =
-        derivative([&](LD t) { return Matrix3ld(P::rotation(Vector3ld(vl + t * vdl))); });
+    const Matrix3ld rdot = five_point_derivative(
+        [&](LD t) { return Matrix3ld(P::rotation(Vector3ld(vl + t * vdl))); });
     const Matrix3ld wx = P::rotation(vl).transpose() * rdot;
     const Vector3ld omega_fd(wx(2, 1), wx(0, 2), wx(1, 0));
-    const Vector3<S> omega = P::G(s.v) * vd;
+    const Vector3<S> omega = P::G(s.coords) * vd;
     CHECK(rel_err(omega, omega_fd) < tol);
-    CHECK((wx + wx.transpose()).norm() < kFdTol);  // R^T Rdot is skew
+    CHECK((wx + wx.transpose()).norm() < kFivePointTol);  // R^T Rdot is skew
 
     // Gdot vdot by finite differences of G (Eq. 1.10).
     const Vector3ld gdot_fd =
-        derivative([&](LD t) { return Vector3ld(P::G(Vector3ld(vl + t * vdl)) * vdl); });
-    CHECK(rel_err(P::Gdot_thetadot(s.v, vd), gdot_fd) < tol);
+        five_point_derivative([&](LD t) { return Vector3ld(P::G(Vector3ld(vl + t * vdl)) * vdl); });
+    CHECK(rel_err(P::Gdot_thetadot(s.coords, vd), gdot_fd) < tol);
 
     // The inverse map, both ways, and the accelerations: G vddot + Gdot vdot = alpha.
     const Vector3<S> w = rnd.vector().cast<S>();
     const Vector3<S> alpha = rnd.vector().cast<S>();
-    CHECK(rel_err(P::G(s.v) * P::thetadot(s.v, w), w) < 16 * kappa * eps<S>());
-    CHECK(rel_err(P::thetadot(s.v, omega), vd) < 16 * kappa * eps<S>());
-    const Vector3<S> vdd = P::thetaddot(s.v, vd, alpha);
-    CHECK(rel_err(Vector3<S>(P::G(s.v) * vdd + P::Gdot_thetadot(s.v, vd)), alpha) <
+    CHECK(rel_err(P::G(s.coords) * P::thetadot(s.coords, w), w) < 16 * kappa * eps<S>());
+    CHECK(rel_err(P::thetadot(s.coords, omega), vd) < 16 * kappa * eps<S>());
+    const Vector3<S> vdd = P::thetaddot(s.coords, vd, alpha);
+    CHECK(rel_err(Vector3<S>(P::G(s.coords) * vdd + P::Gdot_thetadot(s.coords, vd)), alpha) <
           64 * kappa * eps<S>());
   }
 }
@@ -457,18 +423,18 @@ TEST_CASE("Rotation vector AD derivatives, also at v = 0", "[orientation][rotati
   std::vector<Eigen::Vector3d> points{Eigen::Vector3d::Zero(), Eigen::Vector3d(1e-8, 0, 0),
                                       Eigen::Vector3d(0, -6e-9, 8e-9)};
   for (const auto& s : samples<double>(1.8L * kPi, 20)) {
-    points.push_back(s.v);
+    points.push_back(s.coords);
   }
   for (const auto& v : points) {
     INFO("v = " << v.transpose());
     const Eigen::Vector3d vd = rnd.vector();
-    const Vector3<AD> va = seeded(v, vd);
+    const Vector3<AD> va = along(v, vd);
     // d/dt R(v + t vdot) = R S(G vdot)  (S(omega) = R^T Rdot, Eq. 1.5).
     const Matrix3<AD> ra = P::rotation(va);
     Eigen::Matrix3d rdot;
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) {
-        rdot(i, j) = der(ra(i, j));
+        rdot(i, j) = ad_derivative(ra(i, j));
       }
     }
     const double kappa = static_cast<double>(condition(static_cast<LD>(v.norm())));
@@ -477,13 +443,14 @@ TEST_CASE("Rotation vector AD derivatives, also at v = 0", "[orientation][rotati
           64 * eps<double>());
     // d/dt (G(v + t vdot) vdot) = Gdot vdot.
     const Vector3<AD> wa = P::G(va) * vd.cast<AD>();
-    CHECK(rel_err(P::Gdot_thetadot(v, vd), ders(wa)) < 64 * kappa * eps<double>());
+    CHECK(rel_err(P::Gdot_thetadot(v, vd), ad_derivatives(wa)) < 64 * kappa * eps<double>());
     // d/dt q(v + t vdot) = 1/2 q (0, omega) (the quaternion kinematics, Hamilton product).
     const Eigen::Quaternion<AD> qa = P::to_quaternion(va);
     const Eigen::Quaterniond q = P::to_quaternion(v);
     const Eigen::Quaterniond qw(0, omega(0), omega(1), omega(2));
     const Eigen::Vector4d qdot = 0.5 * (q * qw).coeffs();
-    const Eigen::Vector4d qdot_ad(der(qa.x()), der(qa.y()), der(qa.z()), der(qa.w()));
+    const Eigen::Vector4d qdot_ad(ad_derivative(qa.x()), ad_derivative(qa.y()),
+                                  ad_derivative(qa.z()), ad_derivative(qa.w()));
     CHECK(rel_err(qdot_ad, qdot) < 64 * eps<double>());
     // d/dt G^-1(v + t vdot) w, by the identity G G^-1 = I: G d(G^-1 w) = -Gdot (G^-1 w) with
     // Gdot = dG/dt along vdot (from AD of G).
@@ -491,31 +458,32 @@ TEST_CASE("Rotation vector AD derivatives, also at v = 0", "[orientation][rotati
     const Vector3<AD> tda = P::thetadot(va, Vector3<AD>(w.cast<AD>()));
     const Eigen::Vector3d td = P::thetadot(v, w);
     const Vector3<AD> gtd = P::G(va) * td.cast<AD>();
-    CHECK(rel_err(Eigen::Vector3d(P::G(v) * ders(tda)), Eigen::Vector3d(-ders(gtd))) <
-          64 * kappa * kappa * eps<double>());
+    CHECK(rel_err(Eigen::Vector3d(P::G(v) * ad_derivatives(tda)),
+                  Eigen::Vector3d(-ad_derivatives(gtd))) < 64 * kappa * kappa * eps<double>());
   }
 
   // At v = 0 exactly the derivatives are the known first-order terms, and finite.
   const Eigen::Vector3d vd(0.3, -0.4, 1.2);
-  const Vector3<AD> za = seeded(Eigen::Vector3d::Zero(), vd);
+  const Vector3<AD> za = along<3>(Eigen::Vector3d::Zero(), vd);
   const Matrix3<AD> r0 = P::rotation(za);
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
-      CHECK(der(r0(i, j)) == Approx(tumble::skew(vd)(i, j)).margin(1e-15));
+      CHECK(ad_derivative(r0(i, j)) == Approx(tumble::skew(vd)(i, j)).margin(1e-15));
     }
   }
   const Eigen::Quaternion<AD> q0 = P::to_quaternion(za);
-  CHECK(der(q0.w()) == 0.0);
-  CHECK(Eigen::Vector3d(der(q0.x()), der(q0.y()), der(q0.z())) == 0.5 * vd);
+  CHECK(ad_derivative(q0.w()) == 0.0);
+  CHECK(Eigen::Vector3d(ad_derivative(q0.x()), ad_derivative(q0.y()), ad_derivative(q0.z())) ==
+        0.5 * vd);
   // from_quaternion along (1, t e): v = 2 t e + O(t^3).
   const Eigen::Quaternion<AD> qa(
       AD(1.0, Eigen::VectorXd::Zero(1)), AD(0.0, Eigen::VectorXd::Constant(1, vd(0))),
       AD(0.0, Eigen::VectorXd::Constant(1, vd(1))), AD(0.0, Eigen::VectorXd::Constant(1, vd(2))));
   const Vector3<AD> vfromq = P::from_quaternion(qa);
-  CHECK(ders(vfromq) == 2 * vd);
+  CHECK(ad_derivatives(vfromq) == 2 * vd);
   const AD dist = P::singularity_distance(za);
   CHECK(dist.value() == Approx(2 * std::acos(-1.0)));
-  CHECK(std::isfinite(der(dist)));
+  CHECK(std::isfinite(ad_derivative(dist)));
 }
 
 TEMPLATE_TEST_CASE("Rotation vector round trips through R and the quaternion",
@@ -526,11 +494,11 @@ TEMPLATE_TEST_CASE("Rotation vector round trips through R and the quaternion",
       continue;  // the axis sign is ill-conditioned at pi; tested below
     }
     // Back from R or q comes the vector with phi <= pi: canonical(v).
-    const Vector3<S> c = P::canonical(s.v);
+    const Vector3<S> c = P::canonical(s.coords);
     // Absolute error ~eps in q is a relative error ~eps / sin(phi/2) in the axis and phi.
     const LD tol = 32 * eps<S>() * condition(s.phi);
-    CHECK(rel_err(P::from_rotation(P::rotation(s.v)), c) < tol);
-    const Eigen::Quaternion<S> q = P::to_quaternion(s.v);
+    CHECK(rel_err(P::from_rotation(P::rotation(s.coords)), c) < tol);
+    const Eigen::Quaternion<S> q = P::to_quaternion(s.coords);
     CHECK(rel_err(P::from_quaternion(q), c) < tol);
     // Against Eigen: q = (cos(phi/2), n sin(phi/2)) (e0 < 0 beyond phi = pi, as in Eigen).
     const Eigen::Quaternion<LD> qe(Eigen::AngleAxis<LD>(s.phi, s.n));
@@ -565,16 +533,16 @@ TEMPLATE_TEST_CASE("Rotation vector at and near zero", "[orientation][rotation_v
   // |v| = 1e-8: every output agrees with Eigen and with the first-order terms to rounding.
   for (const auto& s :
        {Sample<S>(1e-8L, Vector3ld(1, 2, -2)), Sample<S>(1e-8L, Vector3ld(0, 0, 1))}) {
-    CHECK(rel_err(P::rotation(s.v), s.reference_rotation()) < 4 * eps<S>());
+    CHECK(rel_err(P::rotation(s.coords), s.reference_rotation()) < 4 * eps<S>());
     // G = I - S(v)/2 + S(v)^2/6 + O(phi^4) (the S^2 term, ~2e-17, matters in long double).
-    const Matrix3<S> sk = tumble::skew(s.v);
-    CHECK(rel_err(P::G(s.v), Matrix3<S>(Matrix3<S>::Identity() - S(0.5) * sk + (sk * sk) / S(6))) <
-          4 * eps<S>());
+    const Matrix3<S> sk = tumble::skew(s.coords);
+    CHECK(rel_err(P::G(s.coords), Matrix3<S>(Matrix3<S>::Identity() - S(0.5) * sk +
+                                             (sk * sk) / S(6))) < 4 * eps<S>());
     const Eigen::Quaternion<LD> qe(Eigen::AngleAxis<LD>(s.phi, s.n));
-    CHECK(rel_err(P::to_quaternion(s.v).coeffs(), qe.coeffs()) < 4 * eps<S>());
-    const Vector3<S> back = P::from_quaternion(P::to_quaternion(s.v));
-    CHECK((back - s.v).template cast<LD>().norm() < 4 * eps<S>() * s.phi);
-    CHECK(std::abs(static_cast<LD>(P::singularity_distance(s.v)) - (2 * kPi - s.phi)) <
+    CHECK(rel_err(P::to_quaternion(s.coords).coeffs(), qe.coeffs()) < 4 * eps<S>());
+    const Vector3<S> back = P::from_quaternion(P::to_quaternion(s.coords));
+    CHECK((back - s.coords).template cast<LD>().norm() < 4 * eps<S>() * s.phi);
+    CHECK(std::abs(static_cast<LD>(P::singularity_distance(s.coords)) - (2 * kPi - s.phi)) <
           8 * eps<S>());
   }
 }
@@ -586,14 +554,14 @@ TEMPLATE_TEST_CASE("Rotation vector canonical() maps phi > pi to |v| <= pi",
   // phi <= pi is kept, including phi = pi itself.
   for (const LD phi : {0.5L, 2.0L, 3.0L}) {
     const Sample<S> s(phi, n);
-    CHECK(P::canonical(s.v) == s.v);
+    CHECK(P::canonical(s.coords) == s.coords);
   }
   const Vector3<S> at_pi(S(0), S(0), static_cast<S>(kPi));
   CHECK(P::canonical(at_pi) == at_pi);
   // phi > pi: (phi - 2 pi k) n with k = round(phi / (2 pi)), the same attitude.
   for (const LD phi : {3.3L, 5.0L, 2 * kPi - 1e-3L, 7.0L, 3 * kPi + 0.1L, 12.0L}) {
     const Sample<S> s(phi, n);
-    const Vector3<S> c = P::canonical(s.v);
+    const Vector3<S> c = P::canonical(s.coords);
     const LD k = std::round(s.phi / (2 * kPi));
     const Vector3ld expected = (s.phi - 2 * kPi * k) * s.n;
     INFO("phi = " << static_cast<double>(phi));
@@ -610,21 +578,21 @@ TEMPLATE_TEST_CASE("Rotation vector near the 360 degree singularity",
   // phi = 2 pi - 1e-3: cond(G) = (phi/2) / sin(phi/2) ~ 6.3e3.
   const Sample<S> s(2 * kPi - 1e-3L, Vector3ld(2, -3, 6));
   const LD kappa = condition(s.phi);
-  CHECK(rel_err(P::rotation(s.v), s.reference_rotation()) < 16 * eps<S>());
-  CHECK(std::abs(static_cast<LD>(P::singularity_distance(s.v)) - (2 * kPi - s.phi)) <
+  CHECK(rel_err(P::rotation(s.coords), s.reference_rotation()) < 16 * eps<S>());
+  CHECK(std::abs(static_cast<LD>(P::singularity_distance(s.coords)) - (2 * kPi - s.phi)) <
         8 * eps<S>() * s.phi);
   const Vector3<S> w(S(0.3), S(-0.1), S(0.2));
-  CHECK(rel_err(P::G(s.v) * P::thetadot(s.v, w), w) < 16 * kappa * eps<S>());
+  CHECK(rel_err(P::G(s.coords) * P::thetadot(s.coords, w), w) < 16 * kappa * eps<S>());
 
   // Switching to canonical(v) (norm 1e-3, far from the singularity) keeps omega, with the rate
   // of the new vector G(c)^-1 G(v) vdot = d/dt canonical(v + t vdot) (finite differences).
   tumble::test::Random rnd(3);
   const Vector3<S> vd = rnd.vector().template cast<S>();
-  const Vector3<S> c = P::canonical(s.v);
-  const Vector3<S> cd = P::thetadot(c, Vector3<S>(P::G(s.v) * vd));
-  const Vector3ld vl = s.v.template cast<LD>(), vdl = vd.template cast<LD>();
-  const Vector3ld cd_fd =
-      derivative([&](LD t) { return Vector3ld(P::canonical(Vector3ld(vl + t * vdl))); }, 1e-6L);
+  const Vector3<S> c = P::canonical(s.coords);
+  const Vector3<S> cd = P::thetadot(c, Vector3<S>(P::G(s.coords) * vd));
+  const Vector3ld vl = s.coords.template cast<LD>(), vdl = vd.template cast<LD>();
+  const Vector3ld cd_fd = five_point_derivative(
+      [&](LD t) { return Vector3ld(P::canonical(Vector3ld(vl + t * vdl))); }, 1e-6L);
   CHECK(rel_err(cd, cd_fd) < 64 * kappa * eps<S>() + 1e-9L);
 }
 
@@ -687,14 +655,15 @@ TEST_CASE("Rotation vector AD derivative of the distance to the singularity",
     const Eigen::Vector3d n = rnd.vector().normalized();
     const Eigen::Vector3d th = (phi)*n;
     const Eigen::Vector3d thd = rnd.vector();
-    const AD dist = P::singularity_distance(seeded(th, thd));
+    const AD dist = P::singularity_distance(along(th, thd));
     const Vector3ld thl = th.cast<LD>(), thdl = thd.cast<LD>();
-    const LD fd = derivative(
+    const LD fd = five_point_derivative(
         [&](LD t) {
           return Eigen::Matrix<LD, 1, 1>(P::singularity_distance(Vector3ld(thl + t * thdl)));
         },
         1e-4L * std::min(1.0L, thl.norm() / thdl.norm()))(0);  // |.| varies on the scale |theta|
     INFO("phi = " << phi);
-    CHECK(std::abs(der(dist) - fd) < 64 * eps<double>() * std::max(1.0L, std::abs(fd)) + kFdTol);
+    CHECK(std::abs(ad_derivative(dist) - fd) <
+          64 * eps<double>() * std::max(1.0L, std::abs(fd)) + kFivePointTol);
   }
 }

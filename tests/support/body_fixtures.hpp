@@ -26,6 +26,7 @@
 #include <Eigen/Geometry>
 
 #include "support/catch.hpp"
+#include "support/finite_difference.hpp"
 #include "support/parameterizations.hpp"
 #include "support/random.hpp"
 #include "tumble/body/mass_properties.hpp"
@@ -101,24 +102,6 @@ inline void record_error(std::string_view quantity, std::string_view param, Refe
 }
 
 // --- AD helpers ----------------------------------------------------------------------------------
-
-/// The one-entry derivative vector (dx). Not inlined: when GCC 12 sees the 8-byte allocation and
-/// Eigen's 16-byte packet copy of the same vector in one function, it reports a false
-/// -Warray-bounds (the packet path is dead for size 1).
-[[gnu::noinline]] inline Eigen::VectorXd direction(double dx) {
-  return Eigen::VectorXd::Constant(1, dx);
-}
-
-/// x + t dx with one derivative direction t: its derivative is dx.
-template <int N>
-Eigen::Matrix<AD, N, 1> along(const Eigen::Matrix<double, N, 1>& x,
-                              const Eigen::Matrix<double, N, 1>& dx) {
-  Eigen::Matrix<AD, N, 1> r;
-  for (int i = 0; i < N; ++i) {
-    r(i) = AD(x(i), direction(dx(i)));
-  }
-  return r;
-}
 
 /// x with derivative seeds e_{offset + i} among `total` directions.
 template <int N>

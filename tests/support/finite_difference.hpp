@@ -104,6 +104,16 @@ template <class F> auto richardson_second_derivative(F&& f, long double h0, int 
   return FdDerivative<M>{value, correction + 12 * eps_ld * f_scale / (h_min * h_min)};
 }
 
+/// Five-point central difference of f(t) at t = 0 in long double: truncation ~h^4 |f^(5)| / 30
+/// (~3e-18 |f^(5)| for h = 1e-4), rounding ~eps_ld |f| / h ~ 1e-15 |f|. For smooth, moderate
+/// inputs, where the extrapolation above is not needed.
+template <class F> auto five_point_derivative(F f, long double h = 1e-4L) {
+  using R = decltype(f(h));
+  return R((f(-2 * h) - f(2 * h) + 8 * (f(h) - f(-h))) / (12 * h));
+}
+/// Bound for five_point_derivative on the smooth, moderate inputs of the chart tests.
+inline constexpr long double kFivePointTol = 1e-11L;
+
 /// Forward-mode AD scalar with a dynamic derivative vector.
 using ADScalar = Eigen::AutoDiffScalar<Eigen::VectorXd>;
 
@@ -128,6 +138,24 @@ Eigen::Matrix<ADScalar, DX::RowsAtCompileTime, 1> ad_seed(const Eigen::MatrixBas
 template <class DX>
 Eigen::Matrix<ADScalar, DX::RowsAtCompileTime, 1> ad_constant(const Eigen::MatrixBase<DX>& x) {
   return ad_seed(x, DX::Zero(x.size()));
+}
+
+/// The one-entry derivative vector (dx). Not inlined: when GCC 12 sees the 8-byte allocation and
+/// Eigen's 16-byte packet copy of the same vector in one function, it reports a false
+/// -Warray-bounds (the packet path is dead for size 1).
+[[gnu::noinline]] inline Eigen::VectorXd direction(double dx) {
+  return Eigen::VectorXd::Constant(1, dx);
+}
+
+/// x + t dx with one derivative direction t: its derivative is dx.
+template <int N>
+Eigen::Matrix<ADScalar, N, 1> along(const Eigen::Matrix<double, N, 1>& x,
+                                    const Eigen::Matrix<double, N, 1>& dx) {
+  Eigen::Matrix<ADScalar, N, 1> r;
+  for (int i = 0; i < N; ++i) {
+    r(i) = ADScalar(x(i), direction(dx(i)));
+  }
+  return r;
 }
 
 /// The first derivative component of an AD scalar (0 when it carries none: a constant).

@@ -1,7 +1,10 @@
 #pragma once
 // The parameterizations and scalar types the generic suites run over.
 
+#include <cstddef>
 #include <tuple>
+#include <type_traits>
+#include <utility>
 
 #include <Eigen/Core>
 #include <unsupported/Eigen/AutoDiff>
@@ -50,5 +53,64 @@ using AllParameterizations = std::tuple<EulerParameters
                                         RotationVector
 #endif
                                         >;
+
+// ---- slices ------------------------------------------------------------------------------------
+// TUMBLE_TEST_PARAMETERIZATIONS: the parameterization list of a test source that the build
+// compiles several times, each time with a part of the list (tests/CMakeLists.txt,
+// tumble_add_sliced_sources). A source uses it where it would name AllParameterizations:
+//
+//   TEMPLATE_LIST_TEST_CASE("...", "[...]", TUMBLE_TEST_PARAMETERIZATIONS) { ... }
+//
+// Compiled with -DTUMBLE_TEST_SLICE=k -DTUMBLE_TEST_SLICES=n, the list is slice k of n of
+// AllParameterizations: the types at the indices i with i % n == k (round robin, so that every
+// slice gets a mix of Euler angles and the vector charts, which differ in compile time). Without
+// them it is AllParameterizations itself, and the test names are those of an unsliced build.
+//
+// Why: orientation/properties and body/rigid_body instantiate their checks for every
+// parameterization (properties also for every scalar type); in one translation unit each is one
+// compiler process of minutes and over 4 GB, which no second core can share. Slices compile in
+// parallel, each in a fraction of the memory. The slice's name is part of the Catch2 name of
+// every TEMPLATE_LIST_TEST_CASE ("<name> - tumble::test::ParameterizationSlice<k> - <index>").
+
+namespace detail_slice {
+template <std::size_t K, std::size_t N, class List> struct Slice;
+template <std::size_t K, std::size_t N, class... Ts> struct Slice<K, N, std::tuple<Ts...>> {
+  template <std::size_t... I>
+  static auto pick(std::index_sequence<I...>) -> decltype(std::tuple_cat(
+      std::conditional_t<I % N == K, std::tuple<std::tuple_element_t<I, std::tuple<Ts...>>>,
+                         std::tuple<>>{}...));
+  using type = decltype(pick(std::index_sequence_for<Ts...>{}));
+};
+}  // namespace detail_slice
+
+/// The types of List at the indices i with i % N == K.
+template <std::size_t K, std::size_t N, class List>
+using SliceOf = typename detail_slice::Slice<K, N, List>::type;
+
+static_assert(std::is_same_v<SliceOf<1, 3, std::tuple<int, char, long, float, double>>,
+                             std::tuple<char, double>>);
+
+#if defined(TUMBLE_TEST_SLICE) && defined(TUMBLE_TEST_SLICES)
+static_assert(TUMBLE_TEST_SLICE >= 0 && TUMBLE_TEST_SLICE < TUMBLE_TEST_SLICES,
+              "TUMBLE_TEST_SLICE must be in [0, TUMBLE_TEST_SLICES)");
+/// Slice K of TUMBLE_TEST_SLICES of AllParameterizations (one template argument, so that the
+/// name passes through Catch2's macros, which would split it at a comma).
+template <std::size_t K>
+using ParameterizationSlice = SliceOf<K, TUMBLE_TEST_SLICES, AllParameterizations>;
+#define TUMBLE_TEST_PARAMETERIZATIONS tumble::test::ParameterizationSlice<TUMBLE_TEST_SLICE>
+#define TUMBLE_TEST_PRIMARY_SLICE (TUMBLE_TEST_SLICE == 0)
+#define TUMBLE_TEST_SLICED_NAME(name) \
+  TUMBLE_TEST_CAT(name, TUMBLE_TEST_CAT(_slice, TUMBLE_TEST_SLICE))
+#else
+#define TUMBLE_TEST_PARAMETERIZATIONS tumble::test::AllParameterizations
+#define TUMBLE_TEST_PRIMARY_SLICE 1
+#define TUMBLE_TEST_SLICED_NAME(name) name
+#endif
+// TUMBLE_TEST_PRIMARY_SLICE: true in slice 0 and in an unsliced build. A sliced source that links
+// all its slices into one executable guards what is not per parameterization with it, and names
+// a type list of its own (a product with AllParameterizations, say) TUMBLE_TEST_SLICED_NAME(name):
+// name_slice<k>, so that the Catch2 names of the slices differ.
+#define TUMBLE_TEST_CAT2(a, b) a##b
+#define TUMBLE_TEST_CAT(a, b) TUMBLE_TEST_CAT2(a, b)
 
 }  // namespace tumble::test
