@@ -78,7 +78,8 @@ template <class P, ReferencePoint Ref> void register_scene() {
     Eigen::VectorXd f0(n), f1(n), yj(n);
     const double srur = std::sqrt(std::numeric_limits<double>::epsilon());
     run_cycling(st, [&](std::size_t i) {
-      rhs(c.scene, *c.ws, 0.0, c.y[i], std::span<const Matrix3<double>>(c.base), f0);  // CVODE has f(t, y) already; timed for the first column
+      rhs(c.scene, *c.ws, 0.0, c.y[i], std::span<const Matrix3<double>>(c.base),
+          f0);  // CVODE has f(t, y) already; timed for the first column
       yj = c.y[i];
       for (int j = 0; j < n; ++j) {
         const double saved = yj(j);

@@ -60,6 +60,7 @@ int main() {
   std::printf("largest tip displacement from the pivot: %.2e m (static sag m g/k = %.2e m)\n",
               tip_max, m * 9.81 / 1e6);
   std::printf("BDF: %ld steps, %ld right-hand sides, %ld Jacobians, quaternion drift %.1e\n",
-              s.steps, s.rhs_evals, s.jacobian_evals, tumble::constraint_drift(scene, integrator.state()));
+              s.steps, s.rhs_evals, s.jacobian_evals,
+              tumble::constraint_drift(scene, integrator.state()));
   return 0;
 }

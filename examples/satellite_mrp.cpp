@@ -2,11 +2,11 @@
 //
 // Problem: a rigid spacecraft (principal inertia 10, 15, 20 kg m^2), turned 100 deg about a
 // skewed axis a and tumbling at omega0 = (0.05, -0.08, 0.1) rad/s, must turn to 240 deg about a
-// (the short way, through 180 deg, where |sigma| = 1). Its attitude is integrated in MRP, sigma = n tan(phi/4), which are singular only
-// at 360 deg; the scene switches to the shadow set -sigma/|sigma|^2 whenever |sigma| > 1, so the
-// coordinates stay bounded (the switches are counted).
-// Equations: I alpha = M - omega x I omega (reference chapter Eq. 1.33 with Q = [0; G^T M]),
-// control moment M = -Kp sigma_e - Kd omega, with sigma_e the (short-way) MRP of the attitude
+// (the short way, through 180 deg, where |sigma| = 1). Its attitude is integrated in MRP, sigma = n
+// tan(phi/4), which are singular only at 360 deg; the scene switches to the shadow set
+// -sigma/|sigma|^2 whenever |sigma| > 1, so the coordinates stay bounded (the switches are
+// counted). Equations: I alpha = M - omega x I omega (reference chapter Eq. 1.33 with Q = [0; G^T
+// M]), control moment M = -Kp sigma_e - Kd omega, with sigma_e the (short-way) MRP of the attitude
 // error R_target^T R, in body components (a UserForce that reads R and omega).
 // Units: SI; angles in rad.
 

@@ -19,9 +19,9 @@ int main() {
   using Box = RigidBody<EulerZYX>;
   using Rod = RigidBody<RotationVector, ReferencePoint::offset>;
   Scene<Bodies<Box, Rod>, Loads<SpringDamperBetween>> scene;
-  const auto box = scene.add(Box(MassProperties<>::about_centroid(
-                                 2.0, Eigen::Vector3d(0.02, 0.03, 0.04).asDiagonal())),
-                             {.position = {0, 0, 0}, .velocity = {0.1, 0, 0}, .omega = {1, 3, -2}});
+  const auto box = scene.add(
+      Box(MassProperties<>::about_centroid(2.0, Eigen::Vector3d(0.02, 0.03, 0.04).asDiagonal())),
+      {.position = {0, 0, 0}, .velocity = {0.1, 0, 0}, .omega = {1, 3, -2}});
   const auto rod = scene.add(
       Rod(MassProperties<>::about_centroid(0.5, Eigen::Vector3d(1e-5, 0.0105, 0.0105).asDiagonal(),
                                            Eigen::Vector3d(0.25, 0, 0))),
@@ -36,7 +36,8 @@ int main() {
   options.cvode.atol = 1e-12;
   SceneIntegrator integrator(scene, 0.0, options);
   const tumble::SceneState& y0 = scene.initial_state();
-  const Eigen::Vector3d p0 = tumble::linear_momentum(scene, y0), h0 = tumble::angular_momentum(scene, y0);
+  const Eigen::Vector3d p0 = tumble::linear_momentum(scene, y0),
+                        h0 = tumble::angular_momentum(scene, y0);
   const double e0 = tumble::energy(scene, y0);
   const tumble::SceneState& y = integrator.advance(20.0);
   const auto s = integrator.statistics();

@@ -14,6 +14,8 @@
 // Must precede every Eigen include (see integrate/alloc_counter.hpp).
 #define EIGEN_RUNTIME_NO_MALLOC
 
+#include "tumble/scene/jacobian.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -40,7 +42,6 @@
 #include "tumble/force/spring_damper.hpp"
 #include "tumble/force/user_force.hpp"
 #include "tumble/integrate/scene_integrator.hpp"
-#include "tumble/scene/jacobian.hpp"
 #include "tumble/scene/observables.hpp"
 #include "tumble/scene/preconditioner.hpp"
 #include "tumble/scene/rhs.hpp"

@@ -220,7 +220,8 @@ TEST_CASE("the initial state gives back what was added", "[scene][scene]") {
   CHECK(st.base[c.id] == Matrix3d::Identity());
 
   // Centroid of the body framed off its centroid: r_oc + R r_g (Eq. 1.1).
-  CHECK(max_abs(tumble::centroid_position(scene, b, st) - (sb.position + near_lock * kCentroid)) < 1e-14);
+  CHECK(max_abs(tumble::centroid_position(scene, b, st) - (sb.position + near_lock * kCentroid)) <
+        1e-14);
   CHECK(max_abs(tumble::centroid_position(scene, a, st) - sa.position) == 0.0);
 }
 
@@ -475,7 +476,7 @@ TEST_CASE("a re-centered chart gives the same physical accelerations", "[scene][
   scene.add_load(z, spring);
   const SceneState& st = scene.initial_state();
   const VectorXd& y = st.y;
-  REQUIRE(y.segment<3>(scene.offset(z) + 3).norm() == 0.0);  // the ZYX chart was re-centered
+  REQUIRE(y.segment<3>(scene.offset(z) + 3).norm() == 0.0);      // the ZYX chart was re-centered
   REQUIRE(max_abs(st.base[z.id] - Matrix3d::Identity()) > 0.5);  // with a base
 
   VectorXd ydot(scene.size());
@@ -577,7 +578,8 @@ TEST_CASE("energy, momenta and centroids are the sums over the bodies", "[scene]
 
   CHECK(std::abs(tumble::kinetic_energy(s.scene, st) - kinetic) < 1e-14 * kinetic);
   CHECK(std::abs(tumble::potential_energy(s.scene, st) - potential) < 1e-13 * std::abs(potential));
-  CHECK(std::abs(tumble::energy(s.scene, st) - (kinetic + potential)) < 1e-13 * std::abs(potential));
+  CHECK(std::abs(tumble::energy(s.scene, st) - (kinetic + potential)) <
+        1e-13 * std::abs(potential));
   CHECK(max_abs(tumble::linear_momentum(s.scene, st) - momentum) < 1e-14 * momentum.norm());
   CHECK(max_abs(tumble::angular_momentum(s.scene, st) - angular) < 1e-14 * angular.norm());
 }

@@ -48,8 +48,6 @@ inline double global_error_bound(double tol, long steps, double rate, double t_e
   return 5.0 * tol * static_cast<double>(steps) * (1.0 + rate * t_end);
 }
 
-inline const char* method_name(CvodeMethod m) {
-  return m == CvodeMethod::adams ? "Adams" : "BDF";
-}
+inline const char* method_name(CvodeMethod m) { return m == CvodeMethod::adams ? "Adams" : "BDF"; }
 
 }  // namespace tumble::test

@@ -6,7 +6,7 @@
 //
 // tumble's code is written for any scalar (see core/types.hpp), so the bodies, the
 // parameterizations and the force elements run in Jet<N> unchanged; the scene uses this for its
-// Jacobian df/dy (scene/scene.hpp, Scene::jacobian).
+// Jacobian df/dy (scene/jacobian.hpp).
 
 #include <Eigen/Core>
 #include <unsupported/Eigen/AutoDiff>

@@ -30,7 +30,7 @@ template <class F, bool NeedsRotation = true> class UserForce {
 
   /// \throws NonFiniteError if the callable returns a non-finite wrench.
   /// Available for the scalar types the callable accepts: a callable written for any scalar (a
-  /// template) lets a scene differentiate it exactly (Scene::jacobian).
+  /// template) lets a scene differentiate it exactly (scene/jacobian.hpp).
   template <class S, ReferencePoint Ref>
   requires detail::ForceCallable<F, S, Ref>
   void apply(const S& t, const BodyKinematics<S, Ref>& k, Wrench<S>& w) const {

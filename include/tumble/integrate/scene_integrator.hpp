@@ -69,7 +69,9 @@ template <class SceneT> class SceneSystem {
 
  public:
   SceneSystem(const SceneT& scene, ChartBases base, bool stabilize, bool with_preconditioner)
-      : scene_(&scene), ws_(scene), base_(std::move(base)),
+      : scene_(&scene),
+        ws_(scene),
+        base_(std::move(base)),
         switches_(static_cast<std::size_t>(scene.body_count()), 0) {
     ws_.stabilize_constraints = stabilize;
     if constexpr (SceneT::differentiable) {
@@ -190,9 +192,9 @@ template <class SceneT> class SceneSystem {
   const SceneT* scene_;
   SceneWorkspace<SceneT> ws_;
   std::optional<Preconditioner> preconditioner_;
-  ChartBases base_;            ///< the discrete part of the state
+  ChartBases base_;             ///< the discrete part of the state
   std::vector<long> switches_;  ///< per body
-  SceneState event_state_;     ///< what event actions see and change
+  SceneState event_state_;      ///< what event actions see and change
 };
 
 }  // namespace detail
@@ -279,12 +281,11 @@ template <class SceneT> class SceneIntegrator {
 
   static void check_state(const SceneT& scene, const SceneState& s, const char* who) {
     if (s.y.size() != scene.size() || static_cast<int>(s.base.size()) != scene.body_count()) {
-      throw std::invalid_argument(std::string("tumble::SceneIntegrator::") + who +
-                                  ": the state has " + std::to_string(s.y.size()) +
-                                  " entries and " + std::to_string(s.base.size()) +
-                                  " chart bases, but the scene has size " +
-                                  std::to_string(scene.size()) + " and " +
-                                  std::to_string(scene.body_count()) + " bodies");
+      throw std::invalid_argument(
+          std::string("tumble::SceneIntegrator::") + who + ": the state has " +
+          std::to_string(s.y.size()) + " entries and " + std::to_string(s.base.size()) +
+          " chart bases, but the scene has size " + std::to_string(scene.size()) + " and " +
+          std::to_string(scene.body_count()) + " bodies");
     }
     for (const auto& b : s.base) {
       if (!b.allFinite() ||
@@ -306,8 +307,7 @@ template <class SceneT> class SceneIntegrator {
         options.cvode.upper_bandwidth < 0 && options.cvode.lower_bandwidth < 0) {
       options.cvode.upper_bandwidth = options.cvode.lower_bandwidth = scene.half_bandwidth();
     }
-    const bool preconditioned = bdf &&
-                                options.cvode.linear_solver == CvodeLinearSolver::gmres &&
+    const bool preconditioned = bdf && options.cvode.linear_solver == CvodeLinearSolver::gmres &&
                                 options.cvode.preconditioning != CvodePreconditioning::none;
     SceneSystem system(scene, s0.base, !project && options.stabilize_quaternions, preconditioned);
     Eigen::VectorXd y = s0.y;

@@ -38,29 +38,29 @@
 namespace tumble {
 
 template <class P>
-concept Orientation =
-    requires {
-      { P::size } -> std::convertible_to<int>;
-      { P::has_constraint } -> std::convertible_to<bool>;
-      { P::name } -> std::convertible_to<std::string_view>;
-      typename P::template Coords<double>;
-    } && (P::size == 3 || P::size == 4) &&
+concept Orientation = requires {
+  { P::size } -> std::convertible_to<int>;
+  { P::has_constraint } -> std::convertible_to<bool>;
+  { P::name } -> std::convertible_to<std::string_view>;
+  typename P::template Coords<double>;
+}
+&&(P::size == 3 || P::size == 4) &&
     requires(const typename P::template Coords<double>& theta, const Vector3<double>& w,
              const Matrix3<double>& R, const Eigen::Quaterniond& q) {
-      { P::rotation(theta) } -> std::same_as<Matrix3<double>>;
-      { P::G(theta) } -> std::same_as<Matrix<double, 3, P::size>>;
-      { P::Gdot_thetadot(theta, theta) } -> std::same_as<Vector3<double>>;
-      { P::thetadot(theta, w) } -> std::same_as<typename P::template Coords<double>>;
-      { P::thetaddot(theta, theta, w) } -> std::same_as<typename P::template Coords<double>>;
-      { P::from_rotation(R) } -> std::same_as<typename P::template Coords<double>>;
-      { P::to_quaternion(theta) } -> std::same_as<Eigen::Quaterniond>;
-      { P::from_quaternion(q) } -> std::same_as<typename P::template Coords<double>>;
-      { P::singularity_distance(theta) } -> std::same_as<double>;
-      { P::canonical(theta) } -> std::same_as<typename P::template Coords<double>>;
-    } &&
-    (!P::has_constraint || requires(const typename P::template Coords<double>& theta) {
-      { P::constraint(theta) } -> std::same_as<double>;
-    });
+  { P::rotation(theta) } -> std::same_as<Matrix3<double>>;
+  { P::G(theta) } -> std::same_as<Matrix<double, 3, P::size>>;
+  { P::Gdot_thetadot(theta, theta) } -> std::same_as<Vector3<double>>;
+  { P::thetadot(theta, w) } -> std::same_as<typename P::template Coords<double>>;
+  { P::thetaddot(theta, theta, w) } -> std::same_as<typename P::template Coords<double>>;
+  { P::from_rotation(R) } -> std::same_as<typename P::template Coords<double>>;
+  { P::to_quaternion(theta) } -> std::same_as<Eigen::Quaterniond>;
+  { P::from_quaternion(q) } -> std::same_as<typename P::template Coords<double>>;
+  { P::singularity_distance(theta) } -> std::same_as<double>;
+  { P::canonical(theta) } -> std::same_as<typename P::template Coords<double>>;
+}
+&&(!P::has_constraint || requires(const typename P::template Coords<double>& theta) {
+  { P::constraint(theta) } -> std::same_as<double>;
+});
 
 /// Convert the coordinates of one parameterization into another through the unit quaternion
 /// (exact up to rounding; no trigonometric round trip through a matrix).

@@ -31,6 +31,41 @@ namespace tumble {
 
 namespace detail {
 
+/// Where the Jacobian's blocks go, behind one function pointer: a dense matrix, CVODE's band
+/// storage or the preconditioner's block diagonal alike. The automatic differentiation below is
+/// then compiled once per scene, not once per kind of matrix (which tripled the compiler's time
+/// and memory for every scene type integrated with BDF); the price is one indirect call per
+/// block, a few per body.
+class JacobianSink {
+ public:
+  using Block = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+
+  template <class Jac>
+  explicit JacobianSink(Jac& jac) : target_(&jac), add_(&add_to<std::remove_cv_t<Jac>>) {}
+
+  /// jac(r0 + i, c0 + j) += b(i, j), through detail::add_block of the target's type.
+  template <class Derived>
+  void add_block(Eigen::Index r0, Eigen::Index c0, const Eigen::MatrixBase<Derived>& b) const {
+    if constexpr (bool(Eigen::internal::traits<Derived>::Flags & Eigen::DirectAccessBit) &&
+                  !bool(Eigen::internal::traits<Derived>::Flags & Eigen::RowMajorBit)) {
+      add_(target_, r0, c0,
+           Block(b.derived().data(), b.rows(), b.cols(), Eigen::OuterStride<>(b.outerStride())));
+    } else {
+      const typename Derived::PlainObject m = b;  // fixed-size here: no allocation
+      add_(target_, r0, c0, Block(m.data(), m.rows(), m.cols(), Eigen::OuterStride<>(m.rows())));
+    }
+  }
+
+ private:
+  template <class Jac>
+  static void add_to(void* target, Eigen::Index r0, Eigen::Index c0, const Block& b) {
+    detail::add_block(*static_cast<Jac*>(target), r0, c0, b);
+  }
+
+  void* target_;
+  void (*add_)(void*, Eigen::Index, Eigen::Index, const Block&);
+};
+
 /// Body e's one-body loads in scalar S with its kinematics k.
 template <class SceneT, class Entry, class S, class K, std::size_t... I>
 void one_body_loads([[maybe_unused]] const SceneT& scene, [[maybe_unused]] const Entry& e,
@@ -121,15 +156,11 @@ void coupling_block(SceneWorkspace<SceneT>& ws, const Load& load, const EntryA& 
   add_coupling_rows<nb>(ws, eb.id, eb.offset, wb, ea.offset, eb.offset, na, jac);
 }
 
-}  // namespace detail
-
-/// Adds J = df/dy at (t, y, base) into `jac`, which must hold zeros on entry: an Eigen dense
-/// matrix (or Map) of size() x size(), a BandMatrixMap (entries outside its band are dropped),
-/// or any sink with add_block(r0, c0, block). Throws NonFiniteError where rhs() would.
-template <class SceneT, class Y, class Jac>
-requires SceneT::differentiable
-void jacobian(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y& y,
-              std::span<const Matrix3<double>> base, Jac& jac) {
+/// The Jacobian of a scene into a sink (see jacobian() below).
+template <class SceneT>
+void scene_jacobian(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t,
+                    const Eigen::Map<const Eigen::VectorXd>& y,
+                    std::span<const Matrix3<double>> base, const JacobianSink& jac) {
   if constexpr (SceneT::has_couplings) {
     // The coupling wrenches at y, in double: the body blocks need their value.
     detail::scene_kinematics(scene, ws, y, base);
@@ -142,7 +173,8 @@ void jacobian(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y
   scene.for_each_entry([&](const auto& e) {
     using Body = std::remove_cvref_t<decltype(e.body)>;
     constexpr int nq = Body::nq;
-    detail::add_block(jac, e.offset, e.offset + nq, Matrix<double, nq, nq>::Identity());
+    const Matrix<double, nq, nq> identity = Matrix<double, nq, nq>::Identity();
+    detail::add_block(jac, e.offset, e.offset + nq, identity);
     if constexpr (SceneT::has_couplings) {
       if (scene.coupled(e.id)) {
         detail::body_block_in<2 * nq + 6>(scene, ws, e, t, y, base[e.id], jac);
@@ -164,11 +196,25 @@ void jacobian(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y
   }
 }
 
+}  // namespace detail
+
+/// Adds J = df/dy at (t, y, base) into `jac`, which must hold zeros on entry: an Eigen dense
+/// matrix (or Map) of size() x size(), a BandMatrixMap (entries outside its band are dropped),
+/// or any sink with add_block(r0, c0, block). y is any Eigen vector with contiguous storage.
+/// Throws NonFiniteError where rhs() would.
+template <class SceneT, class Y, class Jac>
+requires SceneT::differentiable void jacobian(const SceneT& scene, SceneWorkspace<SceneT>& ws,
+                                              double t, const Y& y,
+                                              std::span<const Matrix3<double>> base, Jac& jac) {
+  const detail::JacobianSink sink(jac);
+  detail::scene_jacobian(scene, ws, t, Eigen::Map<const Eigen::VectorXd>(y.data(), y.size()), base,
+                         sink);
+}
+
 /// The same for an owned state.
 template <class SceneT, class Jac>
-requires SceneT::differentiable
-void jacobian(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const SceneState& s,
-              Jac& jac) {
+requires SceneT::differentiable void jacobian(const SceneT& scene, SceneWorkspace<SceneT>& ws,
+                                              double t, const SceneState& s, Jac& jac) {
   jacobian(scene, ws, t, s.y, std::span<const Matrix3<double>>(s.base), jac);
 }
 

@@ -44,7 +44,8 @@ template <class Entry> Vector3<double> omega_of(const Entry& e, const SceneState
   return P::G(theta_of(e, s)) * thetadot_of(e, s);
 }
 /// rdot of the centroid, Eq. (1.4) with r_cp = r_cg.
-template <class Entry> Vector3<double> centroid_velocity_of(const Entry& e, const SceneStateView& s) {
+template <class Entry>
+Vector3<double> centroid_velocity_of(const Entry& e, const SceneStateView& s) {
   using Body = std::remove_cvref_t<decltype(e.body)>;
   const Vector3<double> v = s.y.template segment<3>(e.offset + Body::nq);
   if constexpr (Body::at_centroid) {
@@ -54,8 +55,7 @@ template <class Entry> Vector3<double> centroid_velocity_of(const Entry& e, cons
   }
 }
 /// The full kinematics of body e (with R), as its loads see them.
-template <class Entry>
-auto kinematics_of(const Entry& e, const SceneStateView& s) {
+template <class Entry> auto kinematics_of(const Entry& e, const SceneStateView& s) {
   using Body = std::remove_cvref_t<decltype(e.body)>;
   constexpr int nq = Body::nq;
   BodyKinematics<double, Body::reference> k;
@@ -109,7 +109,8 @@ void set_velocity(const SceneT& scene, BodyId<Body> b, SceneState& s, const Vect
 }
 
 /// Sum of the kinetic energies, J.
-template <class SceneT> [[nodiscard]] double kinetic_energy(const SceneT& scene, const SceneStateView& s) {
+template <class SceneT>
+[[nodiscard]] double kinetic_energy(const SceneT& scene, const SceneStateView& s) {
   double t = 0;
   scene.for_each_entry([&](const auto& e) {
     const Vector3<double> vg = detail::centroid_velocity_of(e, s);

@@ -39,8 +39,10 @@ template <class... B, class... L> class BlockPreconditioner<Scene<Bodies<B...>, 
 
  public:
   explicit BlockPreconditioner(const SceneT& scene)
-      : owner_(scene.size(), -1), data_(scene.body_count(), nullptr),
-        start_(scene.body_count(), 0), size_(scene.body_count(), 0) {
+      : owner_(scene.size(), -1),
+        data_(scene.body_count(), nullptr),
+        start_(scene.body_count(), 0),
+        size_(scene.body_count(), 0) {
     scene.for_each_entry([&](const auto& e) {
       using Body = std::remove_cvref_t<decltype(e.body)>;
       auto& blocks = std::get<std::vector<Block<Body>>>(blocks_);
@@ -126,10 +128,10 @@ template <class... B, class... L> class BlockPreconditioner<Scene<Bodies<B...>, 
   }
 
   std::tuple<std::vector<Block<B>>...> blocks_;
-  std::vector<int> owner_;      ///< per state entry: its body
-  std::vector<double*> data_;   ///< per body: its J_kk
-  std::vector<int> start_;      ///< per body: its offset
-  std::vector<int> size_;       ///< per body: 2 nq
+  std::vector<int> owner_;     ///< per state entry: its body
+  std::vector<double*> data_;  ///< per body: its J_kk
+  std::vector<int> start_;     ///< per body: its offset
+  std::vector<int> size_;      ///< per body: 2 nq
 };
 
 }  // namespace tumble

@@ -46,7 +46,8 @@ void scene_loads_of_type(const SceneT& scene, SceneWorkspace<SceneT>& ws, double
     if constexpr (CouplingElement<Load>) {
       a.load.apply(t, ws.view(a.a), ws.view(a.b), ws.wrench(a.a), ws.wrench(a.b));
     } else {
-      scene.visit_entry(a.a, [&](const auto& e) { a.load.apply(t, ws.kinematics(e), ws.wrench(e.id)); });
+      scene.visit_entry(a.a,
+                        [&](const auto& e) { a.load.apply(t, ws.kinematics(e), ws.wrench(e.id)); });
     }
   }
 }

@@ -92,9 +92,9 @@ concept DifferentiableLoad = requires(const L& l, const Jet<2>& t,
 /// One body of a scene, as the model keeps it.
 template <class Body> struct SceneEntry {
   Body body;
-  int id;      ///< global index
-  int local;   ///< index among the bodies of its type
-  int offset;  ///< first entry of its [q; qdot] in y
+  int id;                                    ///< global index
+  int local;                                 ///< index among the bodies of its type
+  int offset;                                ///< first entry of its [q; qdot] in y
   bool needs_rotation = !Body::at_centroid;  ///< some load (or the offset frame) reads R
   double switch_distance = Chart<typename Body::Param>::switch_distance();
 };
@@ -275,8 +275,8 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
     }
     for_each_load([&](const auto& at) {
       if (at.b >= 0) {
-        bw = std::max({bw, block[at.b].second - block[at.a].first,
-                       block[at.a].second - block[at.b].first});
+        bw = std::max(
+            {bw, block[at.b].second - block[at.a].first, block[at.a].second - block[at.b].first});
       }
     });
     return bw;
@@ -339,7 +339,7 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
     }
     if (!detail::all_finite(s.rotation)) {
       fail("rotation (row by row)", Eigen::Map<const Eigen::Matrix<double, 9, 1>>(
-                                         Matrix3<double>(s.rotation.transpose()).data()));
+                                        Matrix3<double>(s.rotation.transpose()).data()));
     }
     if (!detail::all_finite(s.velocity)) {
       fail("velocity", s.velocity);
