@@ -13,6 +13,7 @@
 
 #include "support/catch.hpp"
 #include "support/parameterizations.hpp"
+#include "support/random.hpp"
 #include "support/scene_fixtures.hpp"
 #include "support/torque_free.hpp"
 #include "tumble/body/rigid_body.hpp"

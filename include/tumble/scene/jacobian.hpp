@@ -41,7 +41,8 @@ class JacobianSink {
   using Block = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
 
   template <class Jac>
-  explicit JacobianSink(Jac& jac) : target_(&jac), add_(&add_to<std::remove_cv_t<Jac>>) {}
+  explicit JacobianSink(Jac& jac)
+      : target_(const_cast<void*>(static_cast<const void*>(&jac))), add_(&add_to<Jac>) {}
 
   /// jac(r0 + i, c0 + j) += b(i, j), through detail::add_block of the target's type.
   template <class Derived>

@@ -27,14 +27,14 @@ namespace detail {
 /// Pass 1: every body's kinematics at (y, base) into the workspace, wrenches cleared.
 template <class SceneT, class Y>
 void scene_kinematics(const SceneT& scene, SceneWorkspace<SceneT>& ws, const Y& y,
-                      std::span<const Matrix3<double>> base, bool all_rotations = false) {
+                      std::span<const Matrix3<double>> base) {
   scene.for_each_entry([&](const auto& e) {
     using Body = std::remove_cvref_t<decltype(e.body)>;
     constexpr int nq = Body::nq;
     auto& k = ws.kinematics(e);
     k.mass_properties = &e.body.mass_properties();
     body_kinematics<Body>(y.template segment<nq>(e.offset), y.template segment<nq>(e.offset + nq),
-                          base[e.id], all_rotations || e.needs_rotation, k);
+                          base[e.id], e.needs_rotation, k);
     ws.wrench(e.id) = Wrench<double>{};
   });
 }
