@@ -50,7 +50,7 @@ int main() {
     const Eigen::Matrix3d e = target.transpose() * tumble::rotation(scene, id, y);
     const double err = Eigen::AngleAxisd(e).angle() / deg;
     std::printf("%8.1f %13.4f %17.3e %9.4f\n", t, err, tumble::omega(scene, id, y).norm(),
-                y.segment<3>(scene.offset(id) + 3).norm());
+                y.y.segment<3>(scene.offset(id) + 3).norm());
   }
   const auto s = integrator.statistics();
   std::printf("MRP shadow-set switches: %ld; CVODE: %ld steps, %ld right-hand sides\n",
