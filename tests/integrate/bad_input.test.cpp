@@ -86,8 +86,8 @@ TEST_CASE("bad input: a body's initial state with a non-finite entry", "[integra
   TestScene scene;
   // The message names the body, the field and its value (docs/conventions.md).
   const char* expected[] = {"body 0: the initial position is not finite: (0, nan, 0)",
-                            "body 0: the initial rotation (row by row) is not finite: "
-                            "(1, 0, 0, 0, 1, 0, 0, 0, inf)",
+                            ("body 0: the initial rotation (row by row) is not finite: "
+                             "(1, 0, 0, 0, 1, 0, 0, 0, inf)"),
                             "body 0: the initial velocity is not finite: (-inf, 0, 0)",
                             "body 0: the initial omega is not finite: (0, 0, nan)"};
   for (int field = 0; field < 4; ++field) {
