@@ -1,4 +1,4 @@
-// Bad input to the core (issue 5): every case must throw the documented exception with a message
+// Bad input to the core: every case must throw the documented exception with a message
 // that says what is wrong and where (docs/conventions.md, "Errors"), never crash or return NaN.
 // Mass properties (include/tumble/body/mass_properties.hpp), bodies (rigid_body.hpp), the
 // orientation parameterizations' canonical forms and conversions, and the force elements.

@@ -1,4 +1,4 @@
-// Bad input to scenes and their integration (issue 5): every case throws with a message that
+// Bad input to scenes and their integration: every case throws with a message that
 // says what is wrong and where, and CVODE's failures (too much work, too much accuracy, repeated
 // error-test failures, a failing callback) arrive as an IntegrationError naming the flag, the
 // time and the cause, never as a crash, a hang or a silent NaN.
