@@ -54,6 +54,46 @@ using AllParameterizations = std::tuple<EulerParameters
 #endif
                                         >;
 
+/// The parameterizations the integration suites (tests/integrate, tests/scene) run their scene
+/// types over. All of them by default. Compiled with TUMBLE_TEST_REPRESENTATIVE=1 (CMake:
+/// -DTUMBLE_TEST_INTEGRATION_SET=representative), one of each family, so that every code path of
+/// the scene and the integrator is still taken: Euler parameters (the constraint, projection and
+/// stabilization), a Tait-Bryan and a proper Euler sequence (singular at +-pi/2 and at 0, pi: both
+/// kinds of chart re-centering), Gibbs, the rotation vector (re-centering of vector charts) and
+/// MRP (the shadow set). The 12 Euler sequences share one implementation, which the orientation
+/// and body suites test one by one whatever this set. CI's compat and sanitizer stages use it to
+/// stay within their time; its GCC stage runs the whole list.
+#if defined(TUMBLE_TEST_REPRESENTATIVE) && TUMBLE_TEST_REPRESENTATIVE
+using IntegrationParameterizations = std::tuple<EulerParameters
+#ifdef TUMBLE_TEST_HAVE_EULER_ANGLES
+                                                ,
+                                                EulerZYX, EulerZXZ
+#endif
+#ifdef TUMBLE_TEST_HAVE_RODRIGUES
+                                                ,
+                                                RodriguesParameters
+#endif
+#ifdef TUMBLE_TEST_HAVE_MRP
+                                                ,
+                                                ModifiedRodriguesParameters
+#endif
+#ifdef TUMBLE_TEST_HAVE_ROTATION_VECTOR
+                                                ,
+                                                RotationVector
+#endif
+                                                >;
+#else
+using IntegrationParameterizations = AllParameterizations;
+#endif
+
+/// What a sliced source's list is a slice of: the integration set in the integration suites
+/// (where TUMBLE_TEST_INTEGRATION_LIST is defined by the build), AllParameterizations elsewhere.
+#ifdef TUMBLE_TEST_INTEGRATION_LIST
+using SlicedParameterizations = IntegrationParameterizations;
+#else
+using SlicedParameterizations = AllParameterizations;
+#endif
+
 // ---- slices ------------------------------------------------------------------------------------
 // TUMBLE_TEST_PARAMETERIZATIONS: the parameterization list of a test source that the build
 // compiles several times, each time with a part of the list (tests/CMakeLists.txt,
@@ -62,9 +102,9 @@ using AllParameterizations = std::tuple<EulerParameters
 //   TEMPLATE_LIST_TEST_CASE("...", "[...]", TUMBLE_TEST_PARAMETERIZATIONS) { ... }
 //
 // Compiled with -DTUMBLE_TEST_SLICE=k -DTUMBLE_TEST_SLICES=n, the list is slice k of n of
-// AllParameterizations: the types at the indices i with i % n == k (round robin, so that every
+// SlicedParameterizations: the types at the indices i with i % n == k (round robin, so that every
 // slice gets a mix of Euler angles and the vector charts, which differ in compile time). Without
-// them it is AllParameterizations itself, and the test names are those of an unsliced build.
+// them it is SlicedParameterizations itself, and the test names are those of an unsliced build.
 //
 // Why: orientation/properties and body/rigid_body instantiate their checks for every
 // parameterization (properties also for every scalar type); in one translation unit each is one
@@ -96,13 +136,13 @@ static_assert(TUMBLE_TEST_SLICE >= 0 && TUMBLE_TEST_SLICE < TUMBLE_TEST_SLICES,
 /// Slice K of TUMBLE_TEST_SLICES of AllParameterizations (one template argument, so that the
 /// name passes through Catch2's macros, which would split it at a comma).
 template <std::size_t K>
-using ParameterizationSlice = SliceOf<K, TUMBLE_TEST_SLICES, AllParameterizations>;
+using ParameterizationSlice = SliceOf<K, TUMBLE_TEST_SLICES, SlicedParameterizations>;
 #define TUMBLE_TEST_PARAMETERIZATIONS tumble::test::ParameterizationSlice<TUMBLE_TEST_SLICE>
 #define TUMBLE_TEST_PRIMARY_SLICE (TUMBLE_TEST_SLICE == 0)
 #define TUMBLE_TEST_SLICED_NAME(name) \
   TUMBLE_TEST_CAT(name, TUMBLE_TEST_CAT(_slice, TUMBLE_TEST_SLICE))
 #else
-#define TUMBLE_TEST_PARAMETERIZATIONS tumble::test::AllParameterizations
+#define TUMBLE_TEST_PARAMETERIZATIONS tumble::test::SlicedParameterizations
 #define TUMBLE_TEST_PRIMARY_SLICE 1
 #define TUMBLE_TEST_SLICED_NAME(name) name
 #endif
