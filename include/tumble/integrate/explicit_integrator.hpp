@@ -91,7 +91,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     switches_.assign(static_cast<std::size_t>(scene.body_count()), 0);
     ev_old_.assign(scene.events().size(), 0.0);
     ev_new_.assign(scene.events().size(), 0.0);
-    event_state_.y.setZero(n);
+    event_state_.y.setZero(n);  // what event actions see: sized once, so they allocate nothing
+    event_state_.base.assign(static_cast<std::size_t>(scene.body_count()),
+                             Matrix3<double>::Identity());
     state_.y.setZero(n);
     reset(t0, s0);
   }

@@ -17,11 +17,12 @@
 
 #include <Eigen/Core>
 // Odeint's steppers hold their stage buffers (std::array for a fixed size) uninitialized until
-// the first step writes them, and copy them when constructed: GCC's -Wmaybe-uninitialized
+// the first step writes them, and copy them when constructed: GCC's -W(maybe-)uninitialized
 // reports those copies at the point of inlining, past the system-header exemption.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #endif
 #include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
 #include <boost/numeric/odeint/stepper/runge_kutta_cash_karp54.hpp>
