@@ -16,7 +16,7 @@
 // Must precede every Eigen include (see alloc_counter.hpp).
 #define EIGEN_RUNTIME_NO_MALLOC
 
-#include "integrate/alloc_counter.hpp"
+#include "tumble/integrate/explicit_integrator.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -30,19 +30,19 @@
 
 #include <Eigen/Core>
 
+#include "integrate/alloc_counter.hpp"
 #include "support/catch.hpp"
 #include "support/random.hpp"
 #include "support/scene_fixtures.hpp"
 #include "support/torque_free.hpp"
 #include "tumble/body/rigid_body.hpp"
-#include "tumble/orientation/euler_angles.hpp"
-#include "tumble/orientation/euler_parameters.hpp"
-#include "tumble/orientation/modified_rodrigues.hpp"
 #include "tumble/force/coupling.hpp"
 #include "tumble/force/gravity.hpp"
 #include "tumble/force/spring_damper.hpp"
-#include "tumble/integrate/explicit_integrator.hpp"
 #include "tumble/integrate/scene_integrator.hpp"
+#include "tumble/orientation/euler_angles.hpp"
+#include "tumble/orientation/euler_parameters.hpp"
+#include "tumble/orientation/modified_rodrigues.hpp"
 #include "tumble/scene/observables.hpp"
 #include "tumble/scene/scene.hpp"
 
@@ -111,8 +111,7 @@ struct TumbleRun {
 };
 
 /// 50 s, 101 output times (0, 0.5, ..., 50) through integrate().
-template <class P>
-TumbleRun run_tumbling(OdeintMethod method, double tol) {
+template <class P> TumbleRun run_tumbling(OdeintMethod method, double tol) {
   using Body = RigidBody<P>;
   Scene<Bodies<Body>> scene;
   const auto b = scene.add(Body(MassProperties<double>::about_centroid(1.0, kInertia.asDiagonal())),
@@ -125,8 +124,8 @@ TumbleRun run_tumbling(OdeintMethod method, double tol) {
   }
   TumbleRun r;
   integrator.integrate(times, [&](double t, const SceneState& s) {
-    r.attitude = std::max(r.attitude, rotation_angle_between(tumble::rotation(scene, b, s),
-                                                             reference().rotation(t)));
+    r.attitude = std::max(
+        r.attitude, rotation_angle_between(tumble::rotation(scene, b, s), reference().rotation(t)));
     r.omega = std::max(r.omega, (tumble::omega(scene, b, s) - reference().omega(t)).norm());
     ++r.outputs;
   });
@@ -143,7 +142,8 @@ TumbleRun run_tumbling(OdeintMethod method, double tol) {
 struct TwoBodies {
   using Box = RigidBody<tumble::EulerZYX>;
   using Rod = RigidBody<tumble::ModifiedRodriguesParameters, tumble::ReferencePoint::offset>;
-  using SceneT = Scene<Bodies<Box, Rod>, Loads<tumble::UniformGravity, tumble::SpringDamperBetween>>;
+  using SceneT =
+      Scene<Bodies<Box, Rod>, Loads<tumble::UniformGravity, tumble::SpringDamperBetween>>;
   SceneT scene;
   tumble::BodyId<Box> box;
   tumble::BodyId<Rod> rod;
@@ -161,9 +161,10 @@ struct TwoBodies {
     const tumble::UniformGravity g(Vector3d(0, 0, -9.81));
     scene.add_load(box, g);
     scene.add_load(rod, g);
-    scene.add_load(box, rod,
-                   tumble::SpringDamperBetween({0.1, 0.05, 0}, {0, 0, 0},
-                                               {.stiffness = 50.0, .damping = 0.0, .rest_length = 0.5}));
+    scene.add_load(
+        box, rod,
+        tumble::SpringDamperBetween({0.1, 0.05, 0}, {0, 0, 0},
+                                    {.stiffness = 50.0, .damping = 0.0, .rest_length = 0.5}));
   }
 };
 
@@ -185,21 +186,25 @@ struct Falling {
                      {.position = {0, 0, kDropHeight}, .omega = {0.3, -0.2, 0.1}});
     scene.add_load(ball, tumble::UniformGravity(Vector3d(0, 0, -kG)));
     // z = 0, falling; the action reverses the vertical velocity (an elastic bounce).
-    scene.add_event({.function = [this](double, const tumble::SceneStateView& s) {
-                       return tumble::position(scene, ball, s).z();
-                     },
+    scene.add_event({.function =
+                         [this](double, const tumble::SceneStateView& s) {
+                           return tumble::position(scene, ball, s).z();
+                         },
                      .direction = -1,
-                     .action = [this](double t, SceneState& s) {
-                       hits.push_back(t);
-                       z_at_hit = std::max(z_at_hit, std::abs(tumble::position(scene, ball, s).z()));
-                       Vector3d v = tumble::velocity(scene, ball, s);
-                       v.z() = -v.z();
-                       tumble::set_velocity(scene, ball, s, v, tumble::omega(scene, ball, s));
-                     }});
+                     .action =
+                         [this](double t, SceneState& s) {
+                           hits.push_back(t);
+                           z_at_hit =
+                               std::max(z_at_hit, std::abs(tumble::position(scene, ball, s).z()));
+                           Vector3d v = tumble::velocity(scene, ball, s);
+                           v.z() = -v.z();
+                           tumble::set_velocity(scene, ball, s, v, tumble::omega(scene, ball, s));
+                         }});
   }
 };
 
-// ---- a stiff scene --------------------------------------------------------------------------------
+// ---- a stiff scene
+// --------------------------------------------------------------------------------
 
 /// A body on a heavily damped spring-damper: c/m = 1e6 s^-1 gives a Jacobian eigenvalue of about
 /// -1e6 s^-1 beside the slow motion (k/m = 100 s^-2).
@@ -209,9 +214,9 @@ struct Stiff {
   SceneT scene;
   Stiff() {
     const double m = 2.0;
-    const auto id = scene.add(
-        B(MassProperties<>::about_centroid(m, Vector3d(0.02, 0.03, 0.04).asDiagonal())),
-        {.position = {0.01, 0.0, 0.0}, .omega = {1.0, 2.0, 0.5}});
+    const auto id =
+        scene.add(B(MassProperties<>::about_centroid(m, Vector3d(0.02, 0.03, 0.04).asDiagonal())),
+                  {.position = {0.01, 0.0, 0.0}, .omega = {1.0, 2.0, 0.5}});
     scene.add_load(id, tumble::SpringDamper(Vector3d(0.05, 0, 0), Vector3d(0.05, 0, 0),
                                             {.stiffness = 100 * m, .damping = 1e6 * m}));
   }
@@ -243,8 +248,8 @@ TEST_CASE("explicit integrator: the tumbling body against the exact solution",
       const TumbleRun mrp = run_tumbling<tumble::ModifiedRodriguesParameters>(method, tol);
       report("%-20s tol %.0e  attitude error: EP %.2e  ZYX %.2e (%ld switches)  MRP %.2e (%ld)"
              "   steps %ld %ld %ld  rhs %ld %ld %ld\n",
-             name(method), tol, ep.attitude, zyx.attitude, zyx.switches, mrp.attitude,
-             mrp.switches, ep.steps, zyx.steps, mrp.steps, ep.rhs, zyx.rhs, mrp.rhs);
+             name(method), tol, ep.attitude, zyx.attitude, zyx.switches, mrp.attitude, mrp.switches,
+             ep.steps, zyx.steps, mrp.steps, ep.rhs, zyx.rhs, mrp.rhs);
       CHECK(ep.outputs == 101);
       CHECK(zyx.switches > 0);  // Euler angles must leave their charts, and count it
       CHECK(zyx.body_switches == zyx.switches);
@@ -284,8 +289,8 @@ TEST_CASE("explicit integrator: the tumbling body against the exact solution",
 TEST_CASE("explicit integrator: agrees with CVODE on two bodies under gravity on a spring; energy",
           "[integrate][explicit_integrator]") {
   TwoBodies s;
-  tumble::SceneIntegrator cvode(s.scene, 0.0,
-                                tumble::test::integrator_options(tumble::CvodeMethod::adams, 1e-12));
+  tumble::SceneIntegrator cvode(
+      s.scene, 0.0, tumble::test::integrator_options(tumble::CvodeMethod::adams, 1e-12));
   std::vector<SceneState> expected;
   for (int k = 1; k <= 40; ++k) {
     expected.push_back(cvode.advance(0.1 * k));
@@ -299,17 +304,20 @@ TEST_CASE("explicit integrator: agrees with CVODE on two bodies under gravity on
     for (int k = 1; k <= 40; ++k) {
       const SceneState& y = odeint.advance(0.1 * k);
       const SceneState& z = expected[static_cast<std::size_t>(k - 1)];
-      dr = std::max({dr, (tumble::position(s.scene, s.box, y) - tumble::position(s.scene, s.box, z)).norm(),
-                     (tumble::position(s.scene, s.rod, y) - tumble::position(s.scene, s.rod, z)).norm()});
-      da = std::max({da, rotation_angle_between(tumble::rotation(s.scene, s.box, y),
-                                                tumble::rotation(s.scene, s.box, z)),
+      dr = std::max(
+          {dr, (tumble::position(s.scene, s.box, y) - tumble::position(s.scene, s.box, z)).norm(),
+           (tumble::position(s.scene, s.rod, y) - tumble::position(s.scene, s.rod, z)).norm()});
+      da = std::max({da,
+                     rotation_angle_between(tumble::rotation(s.scene, s.box, y),
+                                            tumble::rotation(s.scene, s.box, z)),
                      rotation_angle_between(tumble::rotation(s.scene, s.rod, y),
                                             tumble::rotation(s.scene, s.rod, z))});
       de = std::max(de, std::abs(tumble::energy(s.scene, y) - e0) / std::abs(e0));
     }
     const auto st = odeint.statistics();
     report("%-20s vs CVODE Adams: position %.2e m, attitude %.2e rad; energy %.2e; %ld steps, "
-           "%ld switches\n", name(method), dr, da, de, st.steps, st.chart_switches);
+           "%ld switches\n",
+           name(method), dr, da, de, st.steps, st.chart_switches);
     CHECK(dr < 1e-8);
     CHECK(da < 3e-8);
     CHECK(de < 1e-9);
@@ -333,7 +341,8 @@ TEST_CASE("explicit integrator: an event located at the closed-form time",
     const SceneState& y = integrator.advance(3.5 * t1);
     REQUIRE(f.hits.size() == 2);
     report("%-20s impacts at t1 %+.2e s, 3 t1 %+.2e s; |z| at impact %.1e m; height at 3.5 t1 "
-           "%.3e (exact %.3e)\n", name(method), f.hits[0] - t1, f.hits[1] - 3 * t1, f.z_at_hit,
+           "%.3e (exact %.3e)\n",
+           name(method), f.hits[0] - t1, f.hits[1] - 3 * t1, f.z_at_hit,
            tumble::position(f.scene, f.ball, y).z(), kDropHeight * 0.75);
     CHECK(std::abs(f.hits[0] - t1) < 1e-9);
     CHECK(std::abs(f.hits[1] - 3 * t1) < 1e-9);
@@ -458,8 +467,11 @@ TEST_CASE("explicit integrator: bad input", "[integrate][explicit_integrator]") 
   integrator.advance(1.0);
   throws_with([&] { integrator.advance(0.5); }, "t_out");
   throws_with([&] { integrator.advance(std::numeric_limits<double>::quiet_NaN()); }, "t_out");
-  throws_with([&] { integrator.integrate({2.0, 1.5}, [](double, const SceneState&) {}); },
-              "non-decreasing");
+  throws_with(
+      [&] {
+        integrator.integrate({2.0, 1.5}, [](double, const SceneState&) {});
+      },
+      "non-decreasing");
   SceneState bad = integrator.state();
   bad.y[4] = std::numeric_limits<double>::quiet_NaN();
   throws_with([&] { integrator.reset(1.0, bad); }, "not finite");

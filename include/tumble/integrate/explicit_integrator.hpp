@@ -69,8 +69,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       : OdeintIntegrator(scene, t0, scene.initial_state(), options) {}
 
   /// Integrate `scene` from (t0, s0), a state of this scene.
-  OdeintIntegrator(const SceneT& scene, double t0, const SceneState& s0,
-                   OdeintOptions options = {})
+  OdeintIntegrator(const SceneT& scene, double t0, const SceneState& s0, OdeintOptions options = {})
       : scene_(&scene), options_(checked(scene, options)), ws_(scene), stepper_(make_stepper()) {
     ws_.stabilize_constraints = options_.stabilize_quaternions;
     const int n = scene.size();
@@ -124,8 +123,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       if (!std::isfinite(t) || t < last) {
         throw std::invalid_argument(
             "tumble::OdeintIntegrator::integrate: the output times must be finite, "
-            "non-decreasing and not before the current time " + num(t_) + "; found " + num(t) +
-            " after " + num(last));
+            "non-decreasing and not before the current time " +
+            num(t_) + "; found " + num(t) + " after " + num(last));
       }
       last = t;
     }
@@ -155,7 +154,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       base_ = old;
       x_ = x_old;
       throw std::invalid_argument(std::string("tumble::OdeintIntegrator::reset: the scene cannot "
-                                              "be evaluated at this state: ") + e.what());
+                                              "be evaluated at this state: ") +
+                                  e.what());
     }
     t_ = t;
     h_ = options_.initial_step > 0.0 ? options_.initial_step : initial_step();
@@ -181,8 +181,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   [[nodiscard]] const OdeintOptions& options() const { return options_; }
 
  private:
-  using Stepper = std::variant<detail::Fehlberg78<State>, detail::Dopri5<State>,
-                               detail::CashKarp54<State>>;
+  using Stepper =
+      std::variant<detail::Fehlberg78<State>, detail::Dopri5<State>, detail::CashKarp54<State>>;
 
   /// A spent budget is reported as stiffness when the mean step h and the estimated largest
   /// eigenvalue rho of the Jacobian have h rho above this (the steps sit near the stability bound
@@ -195,9 +195,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   /// What one advance() has spent, for its budget and the stiffness test.
   struct Run {
     double t_start = 0.0;
-    long attempts = 0;       ///< step attempts
-    long accepted = 0;       ///< accepted steps
-    long rejected = 0;       ///< of which failed Odeint's error test
+    long attempts = 0;  ///< step attempts
+    long accepted = 0;  ///< accepted steps
+    long rejected = 0;  ///< of which failed Odeint's error test
   };
 
   /// What Odeint calls: x' = f(t, x), counted.
@@ -208,7 +208,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
 
   [[nodiscard]] Eigen::Index size() const { return scene_->size(); }
   Eigen::Map<Vec> map(State& x) const { return Eigen::Map<Vec>(x.data(), size()); }
-  Eigen::Map<const Vec> map(const State& x) const { return Eigen::Map<const Vec>(x.data(), size()); }
+  Eigen::Map<const Vec> map(const State& x) const {
+    return Eigen::Map<const Vec>(x.data(), size());
+  }
   std::span<const Matrix3<double>> bases() const { return base_; }
 
   static std::string num(double v) {
@@ -248,10 +250,10 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       throw std::invalid_argument(who + std::string("the time ") + num(t) + " is not finite");
     }
     if (s.y.size() != size() || static_cast<int>(s.base.size()) != scene_->body_count()) {
-      throw std::invalid_argument(
-          who + std::string("the state has ") + std::to_string(s.y.size()) + " entries and " +
-          std::to_string(s.base.size()) + " chart bases, but the scene has size " +
-          std::to_string(size()) + " and " + std::to_string(scene_->body_count()) + " bodies");
+      throw std::invalid_argument(who + std::string("the state has ") + std::to_string(s.y.size()) +
+                                  " entries and " + std::to_string(s.base.size()) +
+                                  " chart bases, but the scene has size " + std::to_string(size()) +
+                                  " and " + std::to_string(scene_->body_count()) + " bodies");
     }
     for (Eigen::Index i = 0; i < s.y.size(); ++i) {
       if (!std::isfinite(s.y[i])) {
@@ -285,9 +287,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       changed = true;
     }
     Eigen::Map<Vec> y = map(x_);
-    recentered = recenter_charts(*scene_, y, std::span<Matrix3<double>>(base_), [this](int id) {
-                   ++switches_[static_cast<std::size_t>(id)];
-                 }) > 0;
+    recentered = recenter_charts(*scene_, y, std::span<Matrix3<double>>(base_),
+                                 [this](int id) { ++switches_[static_cast<std::size_t>(id)]; }) > 0;
     return changed || recentered;
   }
 
@@ -376,8 +377,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       } catch (const NonFiniteError&) {
         if (!deriv_valid_) {  // the state itself cannot be evaluated: nothing to retry
           throw ExplicitIntegrationError(
-              "tumble::OdeintIntegrator: the right-hand side is not finite at t = " + num(t_),
-              t_);
+              "tumble::OdeintIntegrator: the right-hand side is not finite at t = " + num(t_), t_);
         }
         ok = false;
         h = 0.25 * h_try;
@@ -517,8 +517,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       }
       v.normalize();
       double rho = 0.0;
-      const double scale = std::sqrt(std::numeric_limits<double>::epsilon()) *
-                           (1.0 + map(x_).norm());
+      const double scale =
+          std::sqrt(std::numeric_limits<double>::epsilon()) * (1.0 + map(x_).norm());
       for (int k = 0; k < 30; ++k) {
         map(x_tmp_) = map(x_) + scale * v;
         evaluate(x_tmp_, dxdt_new_, t_);
@@ -539,19 +539,19 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     const double mean_h =
         run_.accepted > 0 ? (t_ - run_.t_start) / static_cast<double>(run_.accepted) : 0.0;
     const std::string what =
-        "tumble::OdeintIntegrator::advance: " + std::to_string(run_.attempts) +
-        " step attempts (" + std::to_string(run_.rejected) +
-        " failed the error test; OdeintOptions::max_steps = " +
-        std::to_string(options_.max_steps) + ") took t from " + num(run_.t_start) +
-        " only to " + num(t_) + " of t_out = " + num(t_out) + ", with steps of " + num(mean_h) +
-        " on average";
+        "tumble::OdeintIntegrator::advance: " + std::to_string(run_.attempts) + " step attempts (" +
+        std::to_string(run_.rejected) +
+        " failed the error test; OdeintOptions::max_steps = " + std::to_string(options_.max_steps) +
+        ") took t from " + num(run_.t_start) + " only to " + num(t_) + " of t_out = " + num(t_out) +
+        ", with steps of " + num(mean_h) + " on average";
     const double rho = spectral_radius();
-    if (mean_h * rho > kStiffHRho &&
-        static_cast<double>(run_.rejected) >= kStiffRejections * static_cast<double>(run_.attempts)) {
+    if (mean_h * rho > kStiffHRho && static_cast<double>(run_.rejected) >=
+                                         kStiffRejections * static_cast<double>(run_.attempts)) {
       throw StiffSceneError(
-          what + ". The scene looks stiff: the Jacobian has an eigenvalue of modulus " +
-              num(rho) + ", so the steps are held near the method's stability bound (h rho = " +
-              num(mean_h * rho) + "), not set by the accuracy asked for, and the controller "
+          what + ". The scene looks stiff: the Jacobian has an eigenvalue of modulus " + num(rho) +
+              ", so the steps are held near the method's stability bound (h rho = " +
+              num(mean_h * rho) +
+              "), not set by the accuracy asked for, and the controller "
               "keeps stepping over it. Integrate it with tumble::SceneIntegrator and "
               "CvodeMethod::bdf (BDF, implicit)",
           t_);
@@ -574,12 +574,12 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   SceneWorkspace<SceneT> ws_;
   Stepper stepper_;
   State x_{}, dxdt_{}, x_old_{}, dxdt_old_{}, x_new_{}, dxdt_new_{}, x_tmp_{};
-  bool deriv_valid_ = false;     ///< dxdt_ is x' at x_
+  bool deriv_valid_ = false;  ///< dxdt_ is x' at x_
   Run run_;
-  double t_ = 0.0, h_ = 0.0;     ///< time, next step size
-  Vec corr_;                     ///< the projection's correction
-  Eigen::VectorXd g_, g0_;       ///< chart roots at a step's end and start
-  std::vector<double> deep_;     ///< per chart body: roots below this reject a step
+  double t_ = 0.0, h_ = 0.0;             ///< time, next step size
+  Vec corr_;                             ///< the projection's correction
+  Eigen::VectorXd g_, g0_;               ///< chart roots at a step's end and start
+  std::vector<double> deep_;             ///< per chart body: roots below this reject a step
   std::vector<double> ev_old_, ev_new_;  ///< event functions at the step's start and end
   ChartBases base_;
   std::vector<long> switches_;

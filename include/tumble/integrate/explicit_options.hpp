@@ -27,8 +27,8 @@ enum class OdeintMethod {
 struct OdeintOptions {
   OdeintMethod method = OdeintMethod::fehlberg78;
   /// Odeint's error test per component i: |err_i| <= atol + rtol (|y_i| + h |y'_i|).
-  double rtol = 1e-8;  ///< > 0
-  double atol = 1e-8;  ///< >= 0
+  double rtol = 1e-8;                                         ///< > 0
+  double atol = 1e-8;                                         ///< >= 0
   double max_step = std::numeric_limits<double>::infinity();  ///< > 0
   double initial_step = 0.0;  ///< 0: estimated (Hairer, Norsett and Wanner, Sec. II.4)
   /// Step attempts (accepted and rejected) allowed in one advance(), or between two output times

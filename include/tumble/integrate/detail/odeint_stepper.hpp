@@ -90,10 +90,8 @@ template <class ErrorStepper> class OdeintControlled {
   Controlled controlled_;
 };
 
-template <class State>
-using Fehlberg78 = OdeintControlled<odeint::runge_kutta_fehlberg78<State>>;
+template <class State> using Fehlberg78 = OdeintControlled<odeint::runge_kutta_fehlberg78<State>>;
 template <class State> using Dopri5 = OdeintControlled<odeint::runge_kutta_dopri5<State>>;
-template <class State>
-using CashKarp54 = OdeintControlled<odeint::runge_kutta_cash_karp54<State>>;
+template <class State> using CashKarp54 = OdeintControlled<odeint::runge_kutta_cash_karp54<State>>;
 
 }  // namespace tumble::detail
