@@ -435,6 +435,10 @@ TEST_CASE("explicit integrator: no heap allocation per step", "[integrate][expli
   }
 }
 
+// Every member compiles, also those no test calls (fixed and dynamic size).
+template class tumble::OdeintIntegrator<Falling::SceneT, 14>;
+template class tumble::OdeintIntegrator<TwoBodies::SceneT>;
+
 TEST_CASE("explicit integrator: bad input", "[integrate][explicit_integrator]") {
   using Body = RigidBody<tumble::EulerZYX>;
   using SceneT = Scene<Bodies<Body>>;
