@@ -1,6 +1,7 @@
 # Install rules and the CMake package: find_package(tumble CONFIG) then provides tumble::tumble
 # and, when tumble was installed with CVODE support and SUNDIALS is found again on the consumer's
-# machine, tumble::cvode (component `cvode`). Included from the top-level CMakeLists.txt when
+# machine, tumble::cvode (component `cvode`); likewise tumble::odeint (component `odeint`, Boost
+# headers >= 1.74). Included from the top-level CMakeLists.txt when
 # TUMBLE_INSTALL is on (the default only when tumble is the top-level project).
 #
 # Layout under the prefix:
@@ -32,6 +33,16 @@ if(TARGET tumble_cvode)
           DESTINATION "${TUMBLE_INSTALL_CMAKEDIR}")
 else()
   set(TUMBLE_INSTALLED_CVODE OFF)
+endif()
+
+# tumble::odeint likewise: its Boost::headers link is BUILD_INTERFACE-only, and the config adds
+# it again after finding Boost on the consumer's machine.
+if(TARGET tumble_odeint)
+  set(TUMBLE_INSTALLED_ODEINT ON)
+  install(TARGETS tumble_odeint EXPORT tumbleOdeintTargets)
+  install(EXPORT tumbleOdeintTargets NAMESPACE tumble:: DESTINATION "${TUMBLE_INSTALL_CMAKEDIR}")
+else()
+  set(TUMBLE_INSTALLED_ODEINT OFF)
 endif()
 
 configure_package_config_file(

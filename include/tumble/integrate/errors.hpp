@@ -11,6 +11,10 @@
 //  - IntegrationError: CVODE stopped with a failure flag. It carries the flag, its name
 //    (CV_TOO_MUCH_WORK, ...), the time reached, and, when the failure was caused by an exception
 //    thrown inside a callback, that exception (cause()).
+//  - ExplicitIntegrationError: the explicit integrator (OdeintIntegrator, explicit_integrator.hpp)
+//    could not go on: its step size fell to the rounding level of t, or one advance() used up its
+//    step budget. StiffSceneError, derived from it, says that the budget was spent the way an
+//    explicit method spends it on a stiff scene, and names the remedy (BDF).
 
 #include <exception>
 #include <stdexcept>
@@ -50,6 +54,26 @@ class IntegrationError : public std::runtime_error {
   std::string flag_name_;
   double time_;
   std::exception_ptr cause_;
+};
+
+/// The explicit integrator stopped: what() says where and why; time() is the time it reached.
+class ExplicitIntegrationError : public std::runtime_error {
+ public:
+  ExplicitIntegrationError(const std::string& what, double time)
+      : std::runtime_error(what), time_(time) {}
+  /// The time the integrator had reached when it stopped.
+  [[nodiscard]] double time() const noexcept { return time_; }
+
+ private:
+  double time_;
+};
+
+/// The explicit integrator spent its step budget with steps far shorter than the accuracy asks
+/// for and frequent rejections: the scene looks stiff. what() names the remedy, the CVODE
+/// SceneIntegrator with BDF.
+class StiffSceneError : public ExplicitIntegrationError {
+ public:
+  using ExplicitIntegrationError::ExplicitIntegrationError;
 };
 
 }  // namespace tumble

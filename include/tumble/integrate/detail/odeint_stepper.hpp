@@ -1,0 +1,97 @@
+#pragma once
+// Boost.Odeint behind one interface for OdeintIntegrator (explicit_integrator.hpp): the state
+// type, and one controlled stepper per OdeintMethod with
+//   try_step(sys, x, dxdt, t, x_new, dxdt_new, h)  one trial step from (t, x) with x' = dxdt;
+//       true when accepted (t advanced, h the next suggestion), false when rejected (h reduced).
+//       For a first-same-as-last pair (dopri5) dxdt_new is x' at x_new; otherwise untouched.
+//   state_at(sys, t, out, <the last accepted step>)  the state at t inside that step: Odeint's
+//       dense output (dopri5's calc_state, exact to the method's interpolation order) or, for the
+//       pairs without one, a step of the same method from the step's start to t (as accurate as
+//       the step itself, at one step's cost).
+// Only Odeint's steppers and its step-size controller are used; the loop around them (output
+// times, charts, projection, events, budgets) is the integrator's.
+
+#include <array>
+#include <type_traits>
+#include <vector>
+
+#include <Eigen/Core>
+// Odeint's steppers hold their stage buffers (std::array for a fixed size) uninitialized until
+// the first step writes them, and copy them when constructed: GCC's -W(maybe-)uninitialized
+// reports those copies at the point of inlining, past the system-header exemption.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
+#endif
+#include <boost/numeric/odeint/stepper/controlled_runge_kutta.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta_cash_karp54.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta_dopri5.hpp>
+#include <boost/numeric/odeint/stepper/runge_kutta_fehlberg78.hpp>
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
+
+#include "tumble/integrate/explicit_options.hpp"
+
+namespace tumble::detail {
+
+namespace odeint = boost::numeric::odeint;
+
+/// Odeint's state: a std::array when the size is known at compile time (no heap at all), a
+/// std::vector otherwise (sized once; Odeint's buffers are resized only when the size changes).
+template <int N>
+using OdeintState = std::conditional_t<N == Eigen::Dynamic, std::vector<double>,
+                                       std::array<double, static_cast<std::size_t>(N < 0 ? 1 : N)>>;
+
+/// One embedded pair under Odeint's controller (controlled_runge_kutta, default error checker).
+template <class ErrorStepper> class OdeintControlled {
+  using Controlled = odeint::controlled_runge_kutta<ErrorStepper>;
+
+ public:
+  /// dopri5: first same as last, and Odeint's dense output.
+  static constexpr bool fsal = std::is_same_v<typename ErrorStepper::stepper_category,
+                                              odeint::explicit_error_stepper_fsal_tag>;
+  static constexpr bool dense = fsal;
+
+  OdeintControlled(double atol, double rtol)
+      : controlled_(typename Controlled::error_checker_type(atol, rtol)) {}
+
+  template <class Sys, class State>
+  bool try_step(Sys sys, const State& x, const State& dxdt, double& t, State& x_new,
+                State& dxdt_new, double& h) {
+    odeint::controlled_step_result r;
+    if constexpr (fsal) {
+      r = controlled_.try_step(sys, x, dxdt, t, x_new, dxdt_new, h);
+    } else {
+      (void)dxdt_new;
+      r = controlled_.try_step(sys, x, dxdt, t, x_new, h);
+    }
+    return r == odeint::success;
+  }
+
+  /// The state at t in [t_old, t_new], the last accepted step (from x_old with x' = dxdt_old to
+  /// x_new with x' = dxdt_new). Dense output is valid only until the next try_step.
+  template <class Sys, class State>
+  void state_at(Sys sys, double t, State& out, const State& x_old, const State& dxdt_old,
+                double t_old, const State& x_new, const State& dxdt_new, double t_new) {
+    if constexpr (dense) {
+      controlled_.stepper().calc_state(t, out, x_old, dxdt_old, t_old, x_new, dxdt_new, t_new);
+    } else {
+      (void)x_new, (void)dxdt_new, (void)t_new;
+      controlled_.stepper().do_step(sys, x_old, dxdt_old, t_old, out, t - t_old);
+    }
+  }
+
+  /// Order of the solution that is propagated (for the initial step estimate).
+  static constexpr int order = ErrorStepper::order_value;
+
+ private:
+  Controlled controlled_;
+};
+
+template <class State> using Fehlberg78 = OdeintControlled<odeint::runge_kutta_fehlberg78<State>>;
+template <class State> using Dopri5 = OdeintControlled<odeint::runge_kutta_dopri5<State>>;
+template <class State> using CashKarp54 = OdeintControlled<odeint::runge_kutta_cash_karp54<State>>;
+
+}  // namespace tumble::detail

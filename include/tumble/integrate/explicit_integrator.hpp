@@ -1,0 +1,593 @@
+#pragma once
+// OdeintIntegrator: a Scene (scene/scene.hpp) integrated by an explicit embedded Runge-Kutta pair
+// of Boost.Odeint (header-only), for small non-stiff scenes where CVODE's per-step overhead and
+// its restarts at every chart switch dominate. The same shape of interface as the CVODE
+// SceneIntegrator (scene_integrator.hpp): advance, integrate, reset, state, statistics.
+//
+// The state is Odeint's std::array<double, N> when the scene's size N is given as a template
+// argument (checked against scene.size() at construction), a std::vector otherwise; the right-
+// hand side views it through Eigen::Map. Nothing is allocated per step (events' user callables
+// aside). Odeint supplies the steppers and the step-size controller (try_step); the loop is here,
+// and between two accepted steps it does what a one-step method can do without any restart:
+// - Three-parameter charts: the chart roots (scene/charts.hpp) are evaluated at the end of each
+//   trial step. A step that ends deeper in a switch zone than half its width (closer to the
+//   singularity than a quarter of the chart center's distance) is rejected and retried shorter,
+//   so no step jumps into a singularity; an accepted step that ends inside the zone is followed
+//   by recenter_charts, which re-centers (MRP: shadow set) and counts.
+// - Euler parameters: projected onto |p| = 1, p.pdot = 0 (scene/projection.hpp) after every step.
+// - User events (Scene::events()): a sign change of an event function over a step (in its
+//   direction) is located by the Illinois method to 1e-12 of the time scale, on Odeint's dense
+//   output (dopri5) or by re-stepping from the step's start (the pairs without dense output); the
+//   step is cut there and the action applied.
+// - Output times are reached by stepping to them exactly (the step is shortened, the controller's
+//   longer suggestion kept for the next one): no interpolation error, and the state returned is a
+//   projected step result on the current chart.
+// After anything changes y between steps (projection, chart switch, event), the derivative at
+// the step's start is evaluated again (for dopri5 this costs its first-same-as-last saving).
+// Stiffness: one advance() may take OdeintOptions::max_steps step attempts. Past that, the
+// largest eigenvalue modulus rho of the Jacobian is estimated (power iteration on difference
+// quotients); when the mean step h has h rho > 1 (steps held near the method's stability bound)
+// and at least 10 % of the attempts failed the error test, the run throws StiffSceneError naming
+// BDF, otherwise ExplicitIntegrationError. Never a run that does not end, never a NaN state:
+// non-finite trial states are rejected, and a step size at the rounding level of t throws.
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <initializer_list>
+#include <limits>
+#include <span>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "tumble/core/errors.hpp"
+#include "tumble/integrate/detail/odeint_stepper.hpp"
+#include "tumble/integrate/errors.hpp"
+#include "tumble/integrate/explicit_options.hpp"
+#include "tumble/scene/chart.hpp"
+#include "tumble/scene/charts.hpp"
+#include "tumble/scene/projection.hpp"
+#include "tumble/scene/rhs.hpp"
+#include "tumble/scene/scene.hpp"
+#include "tumble/scene/state.hpp"
+#include "tumble/scene/workspace.hpp"
+
+namespace tumble {
+
+/// A scene integrated by Boost.Odeint. N: the scene's size (Scene::size()) when known at compile
+/// time (no heap allocation at all in a step), or Eigen::Dynamic.
+template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
+  using State = detail::OdeintState<N>;
+  using Vec = Eigen::Matrix<double, N, 1>;
+
+ public:
+  /// Integrate `scene` from t0 starting at the scene's initial state. The scene must outlive
+  /// the integrator; the integrator only reads it.
+  OdeintIntegrator(const SceneT& scene, double t0, OdeintOptions options = {})
+      : OdeintIntegrator(scene, t0, scene.initial_state(), options) {}
+
+  /// Integrate `scene` from (t0, s0), a state of this scene.
+  OdeintIntegrator(const SceneT& scene, double t0, const SceneState& s0, OdeintOptions options = {})
+      : scene_(&scene), options_(checked(scene, options)), ws_(scene), stepper_(make_stepper()) {
+    ws_.stabilize_constraints = options_.stabilize_quaternions;
+    const int n = scene.size();
+    if constexpr (N == Eigen::Dynamic) {
+      for (State* v : {&x_, &dxdt_, &x_old_, &dxdt_old_, &x_new_, &dxdt_new_, &x_tmp_}) {
+        v->assign(static_cast<std::size_t>(n), 0.0);
+      }
+    }
+    corr_.setZero(n);
+    g_.setZero(static_cast<Eigen::Index>(scene.chart_bodies().size()));
+    g0_.setZero(g_.size());
+    scene.for_each_entry([&](const auto& e) {
+      using Body = std::remove_cvref_t<decltype(e.body)>;
+      if constexpr (Chart<typename Body::Param>::has_singularity) {
+        deep_.push_back(-0.5 * e.switch_distance);
+      }
+    });
+    switches_.assign(static_cast<std::size_t>(scene.body_count()), 0);
+    ev_old_.assign(scene.events().size(), 0.0);
+    ev_new_.assign(scene.events().size(), 0.0);
+    event_state_.y.setZero(n);  // what event actions see: sized once, so they allocate nothing
+    event_state_.base.assign(static_cast<std::size_t>(scene.body_count()),
+                             Matrix3<double>::Identity());
+    state_.y.setZero(n);
+    reset(t0, s0);
+  }
+
+  /// A scene must outlive its integrator: a temporary would not.
+  OdeintIntegrator(SceneT&&, double, OdeintOptions = {}) = delete;
+  OdeintIntegrator(SceneT&&, double, const SceneState&, OdeintOptions = {}) = delete;
+
+  /// Integrates to t_out (>= time()) and returns the state there (valid until the next call).
+  const SceneState& advance(double t_out) {
+    if (!std::isfinite(t_out) || t_out < t_) {
+      throw std::invalid_argument("tumble::OdeintIntegrator::advance: t_out = " + num(t_out) +
+                                  " must be finite and not before the current time " + num(t_));
+    }
+    run_ = Run{.t_start = t_};
+    while (t_ < t_out) {
+      std::visit([&](auto& s) { step_with(s, t_out); }, stepper_);
+    }
+
+    return sync();
+  }
+
+  /// observer(t, state) at each output time (non-decreasing, not before time(), validated before
+  /// integrating).
+  template <class Times, class Observer> void integrate(const Times& times, Observer&& observer) {
+    double last = t_;
+    for (const double t : times) {
+      if (!std::isfinite(t) || t < last) {
+        throw std::invalid_argument(
+            "tumble::OdeintIntegrator::integrate: the output times must be finite, "
+            "non-decreasing and not before the current time " +
+            num(t_) + "; found " + num(t) + " after " + num(last));
+      }
+      last = t;
+    }
+    for (const double t : times) {
+      observer(t, std::as_const(advance(t)));
+    }
+  }
+  template <class Observer>
+  void integrate(std::initializer_list<double> times, Observer&& observer) {
+    integrate(std::span<const double>(times.begin(), times.size()),
+              std::forward<Observer>(observer));
+  }
+
+  /// Restarts from the state s at time t (charts in their switch zone are re-centered first).
+  void reset(double t, const SceneState& s) {
+    check_state(s, t);
+    const ChartBases old = base_;
+    const State x_old = x_;
+    try {
+      Eigen::Map<Vec>(x_.data(), size()) = s.y;
+      base_ = s.base;
+      bool recentered = false;
+      after_change(recentered);
+      evaluate(x_, dxdt_, t);  // throws NonFiniteError at a state the scene cannot evaluate
+      deriv_valid_ = true;
+    } catch (const NonFiniteError& e) {
+      base_ = old;
+      x_ = x_old;
+      throw std::invalid_argument(std::string("tumble::OdeintIntegrator::reset: the scene cannot "
+                                              "be evaluated at this state: ") +
+                                  e.what());
+    }
+    t_ = t;
+    h_ = options_.initial_step > 0.0 ? options_.initial_step : initial_step();
+    events_at(t_, x_, ev_old_);
+    sync();
+  }
+
+  /// The current state: the continuous vector and the chart bases.
+  [[nodiscard]] const SceneState& state() const { return state_; }
+  [[nodiscard]] double time() const { return t_; }
+  [[nodiscard]] OdeintStatistics statistics() const {
+    OdeintStatistics s = stats_;
+    for (const long n : switches_) {
+      s.chart_switches += n;
+    }
+    return s;
+  }
+  /// Chart switches of one body since construction.
+  template <class Body> [[nodiscard]] long chart_switches(BodyId<Body> b) const {
+    return switches_[static_cast<std::size_t>(scene_->entry(b).id)];
+  }
+  [[nodiscard]] const SceneT& scene() const { return *scene_; }
+  [[nodiscard]] const OdeintOptions& options() const { return options_; }
+
+ private:
+  using Stepper =
+      std::variant<detail::Fehlberg78<State>, detail::Dopri5<State>, detail::CashKarp54<State>>;
+
+  /// A spent budget is reported as stiffness when the mean step h and the estimated largest
+  /// eigenvalue rho of the Jacobian have h rho above this (the steps sit near the stability bound
+  /// of the method, about 3 to 5 along the negative real axis for these pairs, instead of being
+  /// set by the accuracy of the slow motion) and at least kStiffRejections of the attempts failed
+  /// the error test (the controller keeps stepping over the stability bound).
+  static constexpr double kStiffHRho = 1.0;
+  static constexpr double kStiffRejections = 0.1;
+
+  /// What one advance() has spent, for its budget and the stiffness test.
+  struct Run {
+    double t_start = 0.0;
+    long attempts = 0;  ///< step attempts
+    long accepted = 0;  ///< accepted steps
+    long rejected = 0;  ///< of which failed Odeint's error test
+  };
+
+  /// What Odeint calls: x' = f(t, x), counted.
+  struct System {
+    OdeintIntegrator* self;
+    void operator()(const State& x, State& dxdt, double t) const { self->evaluate(x, dxdt, t); }
+  };
+
+  [[nodiscard]] Eigen::Index size() const { return scene_->size(); }
+  Eigen::Map<Vec> map(State& x) const { return Eigen::Map<Vec>(x.data(), size()); }
+  Eigen::Map<const Vec> map(const State& x) const {
+    return Eigen::Map<const Vec>(x.data(), size());
+  }
+  std::span<const Matrix3<double>> bases() const { return base_; }
+
+  static std::string num(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return buf;
+  }
+
+  static OdeintOptions checked(const SceneT& scene, const OdeintOptions& o) {
+    validate(o);
+    if constexpr (N != Eigen::Dynamic) {
+      if (scene.size() != N) {
+        throw std::invalid_argument(
+            "tumble::OdeintIntegrator<SceneT, N>: N = " + std::to_string(N) +
+            ", but the scene has size " + std::to_string(scene.size()) +
+            " (Scene::size()); use N = scene.size() or Eigen::Dynamic");
+      }
+    }
+    return o;
+  }
+
+  Stepper make_stepper() const {
+    switch (options_.method) {
+      case OdeintMethod::dopri5:
+        return detail::Dopri5<State>(options_.atol, options_.rtol);
+      case OdeintMethod::cash_karp54:
+        return detail::CashKarp54<State>(options_.atol, options_.rtol);
+      case OdeintMethod::fehlberg78:
+        break;
+    }
+    return detail::Fehlberg78<State>(options_.atol, options_.rtol);
+  }
+
+  void check_state(const SceneState& s, double t) const {
+    const char* who = "tumble::OdeintIntegrator: ";
+    if (!std::isfinite(t)) {
+      throw std::invalid_argument(who + std::string("the time ") + num(t) + " is not finite");
+    }
+    if (s.y.size() != size() || static_cast<int>(s.base.size()) != scene_->body_count()) {
+      throw std::invalid_argument(who + std::string("the state has ") + std::to_string(s.y.size()) +
+                                  " entries and " + std::to_string(s.base.size()) +
+                                  " chart bases, but the scene has size " + std::to_string(size()) +
+                                  " and " + std::to_string(scene_->body_count()) + " bodies");
+    }
+    for (Eigen::Index i = 0; i < s.y.size(); ++i) {
+      if (!std::isfinite(s.y[i])) {
+        throw std::invalid_argument(who + std::string("the state is not finite: y[") +
+                                    std::to_string(i) + "] = " + num(s.y[i]));
+      }
+    }
+    for (const auto& b : s.base) {
+      if (!b.allFinite() ||
+          (b.transpose() * b - Matrix3<double>::Identity()).cwiseAbs().maxCoeff() > 1e-9 ||
+          b.determinant() < 0) {
+        throw std::invalid_argument(who + std::string("a chart base of the state is not a "
+                                                      "proper rotation"));
+      }
+    }
+  }
+
+  void evaluate(const State& x, State& dxdt, double t) {
+    ++stats_.rhs_evals;
+    tumble::rhs(*scene_, ws_, t, map(x), bases(), map(dxdt));
+  }
+
+  /// Projects the quaternions and re-centers the charts of x_ (in their switch zone); true if
+  /// y changed. `recentered`: whether a chart was.
+  bool after_change(bool& recentered) {
+    bool changed = false;
+    if constexpr (SceneT::has_constraints) {
+      Eigen::VectorXd no_error;  // empty: no local error estimate to project (no allocation)
+      tumble::project(*scene_, map(x_), corr_, no_error);
+      map(x_) += corr_;
+      changed = true;
+    }
+    Eigen::Map<Vec> y = map(x_);
+    recentered = recenter_charts(*scene_, y, std::span<Matrix3<double>>(base_),
+                                 [this](int id) { ++switches_[static_cast<std::size_t>(id)]; }) > 0;
+    return changed || recentered;
+  }
+
+  /// 1 when x is finite and no chart is deeper in its switch zone than half its width; else the
+  /// fraction of the step to retry with: for a chart, the one that would end the step in the
+  /// middle of the allowed part of the zone if the root were linear in t.
+  double acceptable(const State& x) {
+    for (const double v : x) {
+      if (!std::isfinite(v)) {
+        return 0.25;
+      }
+    }
+    double fraction = 1.0;
+    if (g_.size() > 0) {
+      chart_roots(*scene_, map(x), g_);
+      for (Eigen::Index i = 0; i < g_.size(); ++i) {
+        const double deep = deep_[static_cast<std::size_t>(i)];
+        if (!(g_[i] >= deep)) {
+          chart_roots(*scene_, map(x_), g0_);
+          const double f = (g0_[i] - 0.5 * deep) / (g0_[i] - g_[i]);
+          fraction = std::min(fraction, std::isfinite(f) ? std::clamp(f, 0.1, 0.9) : 0.5);
+        }
+      }
+    }
+    return fraction;
+  }
+
+  void events_at(double t, const State& x, std::vector<double>& g) const {
+    const auto& events = scene_->events();
+    if (events.empty()) {
+      return;
+    }
+    const SceneStateView view(x.data(), size(), bases());
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      g[i] = events[i].function(t, view);
+    }
+  }
+
+  /// The initial step: Hairer, Norsett and Wanner, Solving ODEs I, Sec. II.4 (one Euler step).
+  double initial_step() {
+    const double p = std::visit([](const auto& s) { return double(s.order); }, stepper_);
+    const auto y = map(x_);
+    const auto f = map(dxdt_);
+    const auto scale = (options_.atol + options_.rtol * y.array().abs()).eval();
+    const double d0 = std::sqrt((y.array() / scale).square().mean());
+    const double d1 = std::sqrt((f.array() / scale).square().mean());
+    double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
+    h0 = std::min(h0, options_.max_step);
+    map(x_tmp_) = y + h0 * f;
+    try {
+      evaluate(x_tmp_, x_new_, t_);
+    } catch (const NonFiniteError&) {
+      return h0;
+    }
+    const double d2 = std::sqrt(((map(x_new_) - f).array() / scale).square().mean()) / h0;
+    const double dm = std::max(d1, d2);
+    const double h1 = dm <= 1e-15 ? std::max(1e-6, 1e-3 * h0) : std::pow(0.01 / dm, 1.0 / (p + 1));
+    return std::min({100.0 * h0, h1, options_.max_step});
+  }
+
+  /// One accepted step towards t_out (cut at an event); throws when the budget is spent.
+  template <class S> void step_with(S& stepper, double t_out) {
+    const System sys{this};
+    for (;;) {
+      if (run_.attempts >= options_.max_steps) {
+        out_of_budget(t_out);
+      }
+      ++run_.attempts;
+      // Step to t_out exactly when it is within reach.
+      const bool to_end = t_out - t_ <= std::min(h_, options_.max_step);
+      const double h_try = to_end ? t_out - t_ : std::min(h_, options_.max_step);
+      double h = h_try, t = t_;
+      bool ok = false;
+      try {
+        if (!deriv_valid_) {
+          evaluate(x_, dxdt_, t_);
+          deriv_valid_ = true;
+        }
+        ok = stepper.try_step(sys, x_, dxdt_, t, x_new_, dxdt_new_, h);
+        if (!ok) {
+          ++run_.rejected;
+        } else if (const double f = acceptable(x_new_); f < 1.0) {
+          ok = false;
+          h = f * h_try;
+        }
+      } catch (const NonFiniteError&) {
+        if (!deriv_valid_) {  // the state itself cannot be evaluated: nothing to retry
+          throw ExplicitIntegrationError(
+              "tumble::OdeintIntegrator: the right-hand side is not finite at t = " + num(t_), t_);
+        }
+        ok = false;
+        h = 0.25 * h_try;
+      }
+      if (!ok) {
+        ++stats_.rejected_steps;
+        if (!(h > 0.0) || t_ + h == t_) {
+          throw ExplicitIntegrationError(
+              "tumble::OdeintIntegrator: the step size fell to " + num(h) +
+                  ", below the rounding level of t = " + num(t_) +
+                  " (a state the scene cannot be evaluated at, or a singularity, ahead)",
+              t_);
+        }
+        h_ = h;
+        continue;
+      }
+      ++stats_.steps;
+      ++run_.accepted;
+      // Stepped to t_out exactly: keep the controller's longer suggestion for the next step.
+      const double t_new = to_end ? t_out : t;
+      h_ = to_end ? std::max(h, h_) : h;
+      finish_step(stepper, sys, t_new);
+      return;
+    }
+  }
+
+  /// After an accepted step from (t_, x_) to (t_new, x_new_): events, then projection and charts.
+  template <class S> void finish_step(S& stepper, const System& sys, double t_new) {
+    std::swap(x_old_, x_);
+    std::swap(dxdt_old_, dxdt_);
+    std::swap(x_, x_new_);
+    if constexpr (S::fsal) {
+      std::swap(dxdt_, dxdt_new_);
+    }
+    const double t_old = t_;
+    t_ = t_new;
+    bool event = false, recentered = false;
+    if (!ev_old_.empty()) {
+      events_at(t_new, x_, ev_new_);
+      event = locate_events(stepper, sys, t_old, t_new);
+    }
+    const bool changed = after_change(recentered) || event;
+    deriv_valid_ = S::fsal && !changed;
+    if (changed) {
+      events_at(t_, x_, ev_old_);
+    } else {
+      std::swap(ev_old_, ev_new_);
+    }
+  }
+
+  static bool crosses(double a, double b, int direction) {
+    return (direction >= 0 && a < 0.0 && b >= 0.0) || (direction <= 0 && a > 0.0 && b <= 0.0);
+  }
+
+  /// Finds the first event whose function changed sign over the last step (in its direction),
+  /// locates its root, cuts the step there (x_, t_) and applies its action. True if one was.
+  template <class S> bool locate_events(S& stepper, const System& sys, double t_old, double t_new) {
+    const auto& events = scene_->events();
+    std::size_t first = events.size();
+    double t_first = t_new;
+    const double tol = 1e-12 * std::max(std::abs(t_new), t_new - t_old);
+    const auto state_at = [&](double t, State& out) {
+      stepper.state_at(sys, t, out, x_old_, dxdt_old_, t_old, x_, dxdt_, t_new);
+    };
+    for (std::size_t i = 0; i < events.size(); ++i) {
+      if (!crosses(ev_old_[i], ev_new_[i], events[i].direction)) {
+        continue;
+      }
+      // Illinois (modified regula falsi) on [a, b], g(a) and g(b) of opposite signs.
+      double a = t_old, b = t_new, ga = ev_old_[i], gb = ev_new_[i];
+      int side = 0;
+      for (int it = 0; it < 200 && b - a > tol; ++it) {
+        double c = it < 60 ? (a * gb - b * ga) / (gb - ga) : 0.5 * (a + b);
+        if (!(c > a && c < b)) {
+          c = 0.5 * (a + b);
+        }
+        state_at(c, x_tmp_);
+        const double gc = events[i].function(c, SceneStateView(x_tmp_.data(), size(), bases()));
+        if (gc == 0.0) {
+          b = c;
+          break;
+        }
+        if ((gc > 0.0) == (gb > 0.0)) {
+          b = c, gb = gc;
+          if (side == 1) {
+            ga *= 0.5;
+          }
+          side = 1;
+        } else {
+          a = c, ga = gc;
+          if (side == -1) {
+            gb *= 0.5;
+          }
+          side = -1;
+        }
+      }
+      if (b < t_first || first == events.size()) {
+        first = i;
+        t_first = b;
+      }
+    }
+    if (first == events.size()) {
+      return false;
+    }
+    // The state just past the root (its function on the new side), where the action applies.
+    if (t_first < t_new) {
+      state_at(t_first, x_tmp_);
+      std::swap(x_, x_tmp_);
+      t_ = t_first;
+    }
+    ++stats_.events;
+    if (const auto& action = events[first].action) {
+      event_state_.y = map(x_);
+      event_state_.base = base_;
+      action(t_, event_state_);
+      if (event_state_.y.size() != size() || event_state_.base.size() != base_.size()) {
+        throw std::invalid_argument("tumble::Event: an action changed the size of the state");
+      }
+      map(x_) = event_state_.y;
+      base_ = event_state_.base;
+    }
+    return true;
+  }
+
+  /// The largest eigenvalue modulus of df/dy at the current state, by power iteration on
+  /// difference quotients (30 evaluations; only when a budget is spent, so the scratch states
+  /// are free). 0 when the right-hand side cannot be evaluated.
+  double spectral_radius() {
+    try {
+      if (!deriv_valid_) {
+        evaluate(x_, dxdt_, t_);
+        deriv_valid_ = true;
+      }
+      auto v = map(x_new_);
+      for (Eigen::Index i = 0; i < v.size(); ++i) {
+        v[i] = 1.0 + 0.1 * static_cast<double>(i % 7);  // no special direction
+      }
+      v.normalize();
+      double rho = 0.0;
+      const double scale =
+          std::sqrt(std::numeric_limits<double>::epsilon()) * (1.0 + map(x_).norm());
+      for (int k = 0; k < 30; ++k) {
+        map(x_tmp_) = map(x_) + scale * v;
+        evaluate(x_tmp_, dxdt_new_, t_);
+        v = (map(dxdt_new_) - map(dxdt_)) / scale;
+        rho = v.norm();
+        if (!(rho > 0.0) || !std::isfinite(rho)) {
+          return 0.0;
+        }
+        v /= rho;
+      }
+      return rho;
+    } catch (const NonFiniteError&) {
+      return 0.0;
+    }
+  }
+
+  [[noreturn]] void out_of_budget(double t_out) {
+    const double mean_h =
+        run_.accepted > 0 ? (t_ - run_.t_start) / static_cast<double>(run_.accepted) : 0.0;
+    const std::string what =
+        "tumble::OdeintIntegrator::advance: " + std::to_string(run_.attempts) + " step attempts (" +
+        std::to_string(run_.rejected) +
+        " failed the error test; OdeintOptions::max_steps = " + std::to_string(options_.max_steps) +
+        ") took t from " + num(run_.t_start) + " only to " + num(t_) + " of t_out = " + num(t_out) +
+        ", with steps of " + num(mean_h) + " on average";
+    const double rho = spectral_radius();
+    if (mean_h * rho > kStiffHRho && static_cast<double>(run_.rejected) >=
+                                         kStiffRejections * static_cast<double>(run_.attempts)) {
+      throw StiffSceneError(
+          what + ". The scene looks stiff: the Jacobian has an eigenvalue of modulus " + num(rho) +
+              ", so the steps are held near the method's stability bound (h rho = " +
+              num(mean_h * rho) +
+              "), not set by the accuracy asked for, and the controller "
+              "keeps stepping over it. Integrate it with tumble::SceneIntegrator and "
+              "CvodeMethod::bdf (BDF, implicit)",
+          t_);
+    }
+    throw ExplicitIntegrationError(
+        what + ". Raise OdeintOptions::max_steps for longer intervals, or integrate to "
+               "intermediate times",
+        t_);
+  }
+
+  /// Copies the current state into state_; no allocation.
+  const SceneState& sync() {
+    state_.y = map(x_);
+    state_.base = base_;
+    return state_;
+  }
+
+  const SceneT* scene_;
+  OdeintOptions options_;
+  SceneWorkspace<SceneT> ws_;
+  Stepper stepper_;
+  State x_{}, dxdt_{}, x_old_{}, dxdt_old_{}, x_new_{}, dxdt_new_{}, x_tmp_{};
+  bool deriv_valid_ = false;  ///< dxdt_ is x' at x_
+  Run run_;
+  double t_ = 0.0, h_ = 0.0;             ///< time, next step size
+  Vec corr_;                             ///< the projection's correction
+  Eigen::VectorXd g_, g0_;               ///< chart roots at a step's end and start
+  std::vector<double> deep_;             ///< per chart body: roots below this reject a step
+  std::vector<double> ev_old_, ev_new_;  ///< event functions at the step's start and end
+  ChartBases base_;
+  std::vector<long> switches_;
+  SceneState event_state_, state_;
+  OdeintStatistics stats_;
+};
+
+}  // namespace tumble
