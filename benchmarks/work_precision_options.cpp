@@ -38,6 +38,9 @@ void usage() {
       "  --difference-quotients\n"
       "                    tumble with BDF: CVODE's difference-quotient Jacobian instead of the\n"
       "                    scene's exact one (to measure what the exact Jacobian changes)\n"
+      "  --fused-ops on|off\n"
+      "                    CVODE methods: SUNDIALS' fused vector operations (default: on; off to\n"
+      "                    measure what they change)\n"
       "  --python PATH     the Python with matplotlib for the plots (default: %s)\n",
       TUMBLE_BENCH_DEFAULT_OUT, TUMBLE_BENCH_PLOT_PYTHON);
 }
@@ -108,6 +111,12 @@ std::optional<Options> parse_options(int argc, char** argv) {
       o.micro = false;
     } else if (a == "--difference-quotients") {
       o.exact_jacobian = false;
+    } else if (a == "--fused-ops") {
+      const std::string f = value();
+      if (f != "on" && f != "off") {
+        throw std::invalid_argument("--fused-ops takes on or off (got '" + f + "')");
+      }
+      o.fused_ops = f == "on";
     } else if (a == "--python") {
       o.python = value();
     } else {

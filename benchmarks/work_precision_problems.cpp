@@ -231,12 +231,29 @@ std::vector<Problem> make_problems(int output_count) {
   tumbling.omega0 = {0.1, 2.0, 0.05};
   list.push_back(tumbling);
 
+  // Stable spins about the two stable principal axes, with a small wobble.
+  Problem minor = tumbling;
+  minor.kind = ProblemKind::minor_axis;
+  minor.id = "minor_axis";
+  minor.title =
+      "spin near the minor axis, I = diag(1, 2, 3), omega0 = (2, 0.1, 0.05) rad/s, T = 50 s";
+  minor.omega0 = {2.0, 0.1, 0.05};
+  list.push_back(minor);
+
+  Problem major = tumbling;
+  major.kind = ProblemKind::major_axis;
+  major.id = "major_axis";
+  major.title =
+      "spin near the major axis, I = diag(1, 2, 3), omega0 = (0.05, 0.1, 2) rad/s, T = 50 s";
+  major.omega0 = {0.05, 0.1, 2.0};
+  list.push_back(major);
+
   Problem spinner = tumbling;
   spinner.kind = ProblemKind::spinner;
   spinner.id = "spinner";
   spinner.title =
-      "fast spin about the minor axis, I = diag(1, 2, 3), omega0 = (200, 0.5, 0.3) rad/s, T = 2 s";
-  spinner.t_end = 2.0;
+      "fast spin about the minor axis, I = diag(1, 2, 3), omega0 = (200, 0.5, 0.3) rad/s, T = 50 s";
+  spinner.t_end = 50.0;
   spinner.omega0 = {200.0, 0.5, 0.3};
   list.push_back(spinner);
 
