@@ -148,6 +148,9 @@ struct Problem {
   /// An estimate of the reference's own attitude error (rad; 0 for a closed form): errors below
   /// a few times this are not resolved.
   double reference_uncertainty = 0;
+  /// The quick run's tolerance ladder takes every `quick_stride`-th tolerance of the default one
+  /// (2: every other decade) for problems whose runs are long.
+  int quick_stride = 1;
 };
 
 /// The outcome of one method on one problem at one setting.
@@ -229,7 +232,8 @@ bool another_rep(const Timing& timing, const std::vector<double>& times);
 /// The four problems with their output times and, for the three with a closed form, their
 /// exact reference samples. The stiff top's reference is filled in by the driver (it needs an
 /// integration, see make_stiff_reference in work_precision_sweep.cpp).
-std::vector<Problem> make_problems(int output_count);
+/// `full`: the spinner runs its 50 s (the quick run: 5 s, see make_problems).
+std::vector<Problem> make_problems(int output_count, bool full);
 
 /// The stiff top's reference (it has no closed form): tumble's equations of the same body and
 /// loads in long double (RigidBody<EulerParameters, offset, long double> and its accelerations),

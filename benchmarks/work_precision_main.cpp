@@ -90,7 +90,7 @@ int run(const Options& o) {
   fs::create_directories(out);
 
   const std::vector<Method> list = methods(o);
-  std::vector<Problem> problems = make_problems(o.outputs);
+  std::vector<Problem> problems = make_problems(o.outputs, o.full);
   std::erase_if(problems, [&](const Problem& p) {
     return !o.problems.empty() && !o.problems.contains(p.id);
   });
