@@ -11,18 +11,27 @@
 //   qddot/<P>/<ref>                     RigidBody::accelerations(q, qdot, wrench) (Eq. 1.32)
 //   qddot_loads/<P>/<ref>               tumble::accelerations(body, t, q, qdot, loads...): the
 //                                       same loads as generalized_force, wrench included
+//   hand_written/EulerParameters/centroid        the floor (micro_floor.hpp): qddot of the
+//   hand_written_loads/EulerParameters/centroid  centroidal Euler-parameter body written by hand,
+//                                       for a given wrench (against qddot/...) and with the same
+//                                       loads assembled by hand (against qddot_loads/...);
+//                                       registered in this file so that floor and subject are
+//                                       compiled in one translation unit and run by the same
+//                                       harness on the same data.
 // R and G do not depend on the reference point and are timed once per parameterization. The
-// baselines (dense LU, hand-written closed form) are in micro_baselines.cpp, the peers in
+// dense-LU baseline is in micro_baselines.cpp, the peers in
 // micro_pinocchio.cpp and micro_mujoco.cpp; benchmarks/summarize_micro.py turns the JSON output
 // into the ratios of docs/benchmarks.md, and tumble_bench prints the medians of its short list.
 // micro_jacobian.cpp times the scene's Jacobian (automatic differentiation) against difference
 // quotients.
 
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <string_view>
 
 #include "micro_common.hpp"
+#include "micro_floor.hpp"
 
 namespace tumble::bench {
 namespace {
@@ -77,6 +86,44 @@ template <class P, ReferencePoint Ref> void register_body() {
   });
 }
 
+/// The floor, checked against tumble on every state first (see micro_floor.hpp).
+void register_hand_written() {
+  using Body = RigidBody<EulerParameters, ReferencePoint::centroid, double>;
+  {
+    const States<Body> s;
+    const Body body(mass_properties<ReferencePoint::centroid>());
+    const HandWritten h;
+    const LoadSet l;
+    for (std::size_t i = 0; i < kStates; ++i) {
+      const auto a = body.accelerations(s.q[i], s.qdot[i], s.wrench[i]);
+      const auto b = h.accelerations(s.q[i], s.qdot[i], s.wrench[i].force, s.wrench[i].moment);
+      const auto c =
+          tumble::accelerations(body, 0.0, s.q[i], s.qdot[i], l.gravity, l.force, l.moment);
+      const auto d = h.accelerations_loads(s.q[i], s.qdot[i]);
+      if (!((a - b).norm() <= 1e-10 * (1.0 + a.norm())) ||
+          !((c - d).norm() <= 1e-10 * (1.0 + c.norm()))) {
+        std::fprintf(stderr,
+                     "tumble_micro: the hand-written closed form and tumble disagree, "
+                     "state %zu\n",
+                     i);
+        std::exit(2);
+      }
+    }
+  }
+  add("hand_written/EulerParameters/centroid", [](benchmark::State& st) {
+    static const States<Body> s;
+    const HandWritten h;
+    run_cycling(st, [&](std::size_t i) {
+      return h.accelerations(s.q[i], s.qdot[i], s.wrench[i].force, s.wrench[i].moment);
+    });
+  });
+  add("hand_written_loads/EulerParameters/centroid", [](benchmark::State& st) {
+    static const States<Body> s;
+    const HandWritten h;
+    run_cycling(st, [&](std::size_t i) { return h.accelerations_loads(s.q[i], s.qdot[i]); });
+  });
+}
+
 template <class... P> void register_all() {
   (register_orientation<P>(), ...);
   (register_body<P, ReferencePoint::centroid>(), ...);
@@ -94,6 +141,7 @@ void register_tumble() {
   register_all<EulerParameters, RodriguesParameters, ModifiedRodriguesParameters, RotationVector,
                EulerXYZ, EulerXZY, EulerYXZ, EulerYZX, EulerZXY, EulerZYX, EulerXYX, EulerXZX,
                EulerYXY, EulerYZY, EulerZXZ, EulerZYZ>();
+  register_hand_written();
 }
 
 }  // namespace tumble::bench

@@ -9,13 +9,8 @@
 //                                 is solved, 8 x 8. Everything tumble skips (the coupling terms at
 //                                 the centroid, the factorization, G^T) is computed here, so
 //                                 qddot_loads / dense_lu is the saving.
-//   hand_written/EulerParameters/centroid        the floor: the fastest case written by hand
-//   hand_written_loads/EulerParameters/centroid  in plain fixed-size Eigen, not calling tumble:
-//                                 omega = 2 L(p) pdot, omegadot = I^-1 (M - omega x I omega),
-//                                 pddot = 1/2 L^T omegadot - |pdot|^2 p, a = F / m; the first for
-//                                 a given wrench (compare with qddot/...), the second with the
-//                                 wrench of the same loads assembled by hand (compare with
-//                                 qddot_loads/...).
+// The hand-written floor (hand_written/..., micro_floor.hpp) is registered in micro.cpp, beside
+// the tumble benchmark it is compared with, so that both are compiled in one translation unit.
 //
 // Before registering, every baseline is checked against tumble's accelerations on all states (a
 // benchmark of a wrong result would mean nothing).
@@ -59,51 +54,6 @@ typename Body::Coords dense_lu(const Body& body, const typename Body::Coords& q,
   }
 }
 
-// --- the hand-written floor: a centroidal body in Euler parameters --------------------------
-struct HandWritten {
-  double mass = body_mass();
-  Matrix3<double> inertia = body_inertia();
-  Matrix3<double> inertia_inverse = body_inertia().inverse();
-  Vector3<double> weight = body_mass() * load_gravity();
-  Vector3<double> point = load_point();
-  Vector3<double> point_force = load_point_force();
-  Vector3<double> moment = load_moment();
-
-  static Matrix<double, 3, 4> l_of(const Vector4<double>& p) {
-    Matrix<double, 3, 4> l;
-    l << -p(1), p(0), p(3), -p(2),  //
-        -p(2), -p(3), p(0), p(1),   //
-        -p(3), p(2), -p(1), p(0);
-    return l;
-  }
-
-  /// qddot for the wrench (f inertial, mc body).
-  Vector<double, 7> accelerations(const Vector<double, 7>& q, const Vector<double, 7>& qd,
-                                  const Vector3<double>& f, const Vector3<double>& mc) const {
-    const Vector4<double> p = q.tail<4>();
-    const Vector4<double> pd = qd.tail<4>();
-    const Matrix<double, 3, 4> l = l_of(p);
-    const Vector3<double> w = 2.0 * (l * pd);
-    const Vector3<double> wd = inertia_inverse * (mc - w.cross(inertia * w));
-    Vector<double, 7> qdd;
-    qdd.head<3>() = f / mass;
-    qdd.tail<4>() = 0.5 * (l.transpose() * wd) - pd.squaredNorm() * p;
-    return qdd;
-  }
-
-  /// qddot under gravity + the point force (inertial) + the body moment.
-  Vector<double, 7> accelerations_loads(const Vector<double, 7>& q,
-                                        const Vector<double, 7>& qd) const {
-    const double e0 = q(3), e1 = q(4), e2 = q(5), e3 = q(6);
-    // R^T f with R = (e0^2 - e.e) I + 2 e e^T + 2 e0 S(e): R^T f = (e0^2 - e.e) f + 2 (e.f) e
-    // - 2 e0 e x f.
-    const Vector3<double> e(e1, e2, e3);
-    const Vector3<double> fb = (e0 * e0 - e.squaredNorm()) * point_force +
-                               (2.0 * e.dot(point_force)) * e - (2.0 * e0) * e.cross(point_force);
-    return accelerations(q, qd, weight + point_force, moment + point.cross(fb));
-  }
-};
-
 template <class Body> void check_dense(const States<Body>& s) {
   const Body body(mass_properties<Body::reference>());
   const LoadSet l;
@@ -136,47 +86,9 @@ template <class... P> void register_dense_all() {
   (register_dense<P, ReferencePoint::offset>(), ...);
 }
 
-void register_hand_written() {
-  using Body = RigidBody<EulerParameters, ReferencePoint::centroid, double>;
-  {
-    const States<Body> s;
-    const Body body(mass_properties<ReferencePoint::centroid>());
-    const HandWritten h;
-    const LoadSet l;
-    for (std::size_t i = 0; i < kStates; ++i) {
-      const auto a = body.accelerations(s.q[i], s.qdot[i], s.wrench[i]);
-      const auto b = h.accelerations(s.q[i], s.qdot[i], s.wrench[i].force, s.wrench[i].moment);
-      const auto c =
-          tumble::accelerations(body, 0.0, s.q[i], s.qdot[i], l.gravity, l.force, l.moment);
-      const auto d = h.accelerations_loads(s.q[i], s.qdot[i]);
-      if (!((a - b).norm() <= 1e-10 * (1.0 + a.norm())) ||
-          !((c - d).norm() <= 1e-10 * (1.0 + c.norm()))) {
-        std::fprintf(stderr,
-                     "tumble_micro: the hand-written closed form and tumble disagree, "
-                     "state %zu\n",
-                     i);
-        std::exit(2);
-      }
-    }
-  }
-  add("hand_written/EulerParameters/centroid", [](benchmark::State& st) {
-    static const States<Body> s;
-    const HandWritten h;
-    run_cycling(st, [&](std::size_t i) {
-      return h.accelerations(s.q[i], s.qdot[i], s.wrench[i].force, s.wrench[i].moment);
-    });
-  });
-  add("hand_written_loads/EulerParameters/centroid", [](benchmark::State& st) {
-    static const States<Body> s;
-    const HandWritten h;
-    run_cycling(st, [&](std::size_t i) { return h.accelerations_loads(s.q[i], s.qdot[i]); });
-  });
-}
-
 }  // namespace
 
 void register_baselines() {
-  register_hand_written();
   register_dense_all<EulerParameters, RodriguesParameters, ModifiedRodriguesParameters,
                      RotationVector, EulerXYZ, EulerXZY, EulerYXZ, EulerYZX, EulerZXY, EulerZYX,
                      EulerXYX, EulerXZX, EulerYXY, EulerYZY, EulerZXZ, EulerZYZ>();

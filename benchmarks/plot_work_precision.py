@@ -51,11 +51,16 @@ def curves(rows):
     return out
 
 
+FLOOR_STYLES = [("black", "s"), ("dimgray", "o"), ("tab:olive", "^"), ("tab:cyan", "v"),
+                ("tab:pink", "D")]
+
+
 def style(method, family, index):
-    if family == "hand-written":
-        return dict(color="black", linestyle="--", linewidth=2.2, marker="s", markersize=4,
-                    label=method + " (CVODE floor)")
-    if family == "pinocchio":
+    if family == "floor":
+        color, marker = FLOOR_STYLES[index % len(FLOOR_STYLES)]
+        return dict(color=color, linestyle="--", linewidth=2.0, marker=marker, markersize=4,
+                    label=method)
+    if family in ("pinocchio", "peer"):
         return dict(color="tab:brown", linestyle=":", linewidth=2.2, marker="D", markersize=4,
                     label=method)
     if family == "rk4":
@@ -73,18 +78,21 @@ def plot_problem(results, problem_id, info):
     data = curves(rows)
     if not data:
         return None
-    tumble_names = []
+    tumble_names, floor_names = [], []
     for m, c in data.items():
-        if c["family"] == "tumble":
+        names = {"tumble": tumble_names, "floor": floor_names}.get(c["family"])
+        if names is not None:
             name = m.rsplit(" ", 1)[0]
-            if name not in tumble_names:
-                tumble_names.append(name)
+            if name not in names:
+                names.append(name)
     fig, axes = plt.subplots(1, 2, figsize=(15, 6.5), sharey=True)
     for ax, scheme in zip(axes, ("adams", "bdf")):
         for m, c in data.items():
-            if c["family"] != "rk4" and c["scheme"] != scheme:
+            # BDF on the right; Adams and the explicit methods (RK4, ARKODE, Odeint) on the left
+            if (c["scheme"] == "bdf") != (scheme == "bdf"):
                 continue
-            index = tumble_names.index(m.rsplit(" ", 1)[0]) if c["family"] == "tumble" else 0
+            names = {"tumble": tumble_names, "floor": floor_names}.get(c["family"])
+            index = names.index(m.rsplit(" ", 1)[0]) if names is not None else 0
             errs, times = zip(*c["points"])
             ax.loglog(errs, times, **style(m, c["family"], index))
         for e in TARGET_ERRORS:
@@ -94,8 +102,8 @@ def plot_problem(results, problem_id, info):
             ax.axvspan(1e-17, 3 * unc, color="mistyrose", zorder=0,
                        label="below 3x the reference's uncertainty")
         ax.set_xlabel("max attitude error over the output times (rad, geodesic angle)")
-        ax.set_title(f"CVODE {'Adams' if scheme == 'adams' else 'BDF'} (rtol = atol = tol)"
-                     " and fixed-step RK4")
+        ax.set_title("CVODE Adams, explicit Runge-Kutta (ARKODE, Odeint) and fixed-step RK4"
+                     if scheme == "adams" else "CVODE BDF (rtol = atol = tol)", fontsize=9)
         ax.grid(True, which="major", alpha=0.3)
         ax.invert_xaxis()
         ax.legend(fontsize=7, loc="upper left", ncol=1)

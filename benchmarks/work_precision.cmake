@@ -30,7 +30,10 @@ add_executable(tumble_bench
   work_precision_problems.cpp    # problems, exact references, error measures
   work_precision_tumble_a.cpp    # method: tumble, parameterizations of the default run
   work_precision_tumble_b.cpp    # method: tumble, the other Euler sequences (--full)
-  work_precision_floors.cpp      # methods: hand-written CVODE floor, fixed-step RK4
+  work_precision_methods.cpp     # the list of methods (one entry each)
+  work_precision_floors.cpp      # methods: hand-written [q; qdot] CVODE floor, fixed-step RK4
+  work_precision_floors_sundials.cpp  # methods: hand-written [p; omega] in CVODE, ARKODE F78
+  work_precision_floors_odeint.cpp    # methods: hand-written [p; omega] in Boost.Odeint
   work_precision_pinocchio.cpp   # method: Pinocchio's aba in CVODE (when installed)
   work_precision_sweep.cpp       # which runs to make, and making them
   work_precision_scaling.cpp     # the scaling study (chain of N bodies)
@@ -41,6 +44,25 @@ add_executable(tumble_bench
 # tumble_test_support (tests/support/CMakeLists.txt): support/torque_free.hpp, the exact solution
 # of the torque-free body.
 target_link_libraries(tumble_bench PRIVATE tumble::cvode tumble_test_support tumble_project_options)
+
+# The floors' ARKODE (ERKStep, Fehlberg 7(8)) and Boost.Odeint (header-only). SUNDIALS 6 names
+# its targets SUNDIALS::arkode_shared/_static, 7 also SUNDIALS::arkode.
+set(_tumble_arkode "")
+foreach(_cand SUNDIALS::arkode SUNDIALS::arkode_shared SUNDIALS::arkode_static)
+  if(TARGET ${_cand})
+    set(_tumble_arkode ${_cand})
+    break()
+  endif()
+endforeach()
+if(NOT _tumble_arkode)
+  find_library(TUMBLE_ARKODE_LIBRARY NAMES sundials_arkode)
+  set(_tumble_arkode ${TUMBLE_ARKODE_LIBRARY})
+endif()
+if(NOT _tumble_arkode)
+  message(FATAL_ERROR "tumble_bench: SUNDIALS' ARKODE not found (Debian: libsundials-dev)")
+endif()
+find_package(Boost 1.65 REQUIRED)  # Boost.Odeint, header-only (Debian: libboost-dev)
+target_link_libraries(tumble_bench PRIVATE ${_tumble_arkode} Boost::headers)
 target_include_directories(tumble_bench PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
 
 string(TOUPPER "${CMAKE_BUILD_TYPE}" _tumble_wp_bt)

@@ -10,12 +10,14 @@
 // on the wall clock (std::chrono::steady_clock) and, beside it, on the thread's CPU-time clock;
 // building the problem's data is not timed.
 //
-// Methods (the sweep that runs them: work_precision_sweep.cpp):
+// Methods: one list (work_precision_methods.cpp), one entry per method, each a Method below:
 //  - tumble: a Scene of one RigidBody<P> integrated by SceneIntegrator (CVODE Adams or BDF), for
 //    every orientation parameterization P (work_precision_tumble.hpp);
-//  - the hand-written CVODE floor: the same CVODE settings on a plain tumble::Cvode system whose
-//    right-hand side is the Euler-parameter closed form written out by hand
-//    (work_precision_floors.cpp);
+//  - floors, every one on a right-hand side written by hand: the Euler-parameter [q; qdot] closed
+//    form in tumble's CVODE setup (work_precision_floors.cpp), and the first-order [p; omega]
+//    form (7 states; 13 with translation and loads, work_precision_floor_rhs.hpp) under CVODE,
+//    ARKODE's Fehlberg 7(8) (work_precision_floors_sundials.cpp) and Boost.Odeint's
+//    Fehlberg 7(8) and Dormand-Prince 5 dense output (work_precision_floors_odeint.cpp);
 //  - fixed-step classical RK4 on the Euler-parameter equations (work_precision_floors.cpp);
 //  - Pinocchio's aba inside the same CVODE setup, when Pinocchio is installed
 //    (work_precision_pinocchio.cpp).
@@ -71,13 +73,22 @@ class Stopwatch {
 
 enum class ProblemKind {
   tumbling,        ///< torque-free asymmetric body, framed at its centroid
+  minor_axis,      ///< the same body, a stable spin near its minor axis
+  major_axis,      ///< the same body, a stable spin near its major axis
   spinner,         ///< the same body spinning fast about its minor axis
   gravity_offset,  ///< a body framed off its centroid, thrown under uniform gravity
   stiff_top,       ///< a spinning top held at its tip by a stiff spring-damper
 };
 
 /// Integration scheme of a method.
-enum class Scheme { adams, bdf, rk4 };
+enum class Scheme {
+  adams,   ///< CVODE Adams-Moulton
+  bdf,     ///< CVODE BDF
+  rk4,     ///< classical RK4, fixed step (swept over the step size, not the tolerance)
+  erk78,   ///< ARKODE ERKStep, Fehlberg 7(8)
+  rkf78,   ///< Boost.Odeint runge_kutta_fehlberg78, controlled
+  dopri5,  ///< Boost.Odeint runge_kutta_dopri5, dense output
+};
 
 inline const char* scheme_name(Scheme s) {
   switch (s) {
@@ -87,6 +98,12 @@ inline const char* scheme_name(Scheme s) {
       return "bdf";
     case Scheme::rk4:
       return "rk4";
+    case Scheme::erk78:
+      return "erk-f78";
+    case Scheme::rkf78:
+      return "rkf78";
+    case Scheme::dopri5:
+      return "dopri5";
   }
   return "?";
 }
@@ -131,6 +148,9 @@ struct Problem {
   /// An estimate of the reference's own attitude error (rad; 0 for a closed form): errors below
   /// a few times this are not resolved.
   double reference_uncertainty = 0;
+  /// The quick run's tolerance ladder takes every `quick_stride`-th tolerance of the default one
+  /// (2: every other decade) for problems whose runs are long.
+  int quick_stride = 1;
 };
 
 /// The outcome of one method on one problem at one setting.
@@ -212,7 +232,8 @@ bool another_rep(const Timing& timing, const std::vector<double>& times);
 /// The four problems with their output times and, for the three with a closed form, their
 /// exact reference samples. The stiff top's reference is filled in by the driver (it needs an
 /// integration, see make_stiff_reference in work_precision_sweep.cpp).
-std::vector<Problem> make_problems(int output_count);
+/// `full`: the spinner runs its 50 s (the quick run: 5 s, see make_problems).
+std::vector<Problem> make_problems(int output_count, bool full);
 
 /// The stiff top's reference (it has no closed form): tumble's equations of the same body and
 /// loads in long double (RigidBody<EulerParameters, offset, long double> and its accelerations),
@@ -227,40 +248,67 @@ std::vector<Sample> exact_samples(const Problem& p);
 
 // ---- the methods ----------------------------------------------------------------------------
 
-/// CVODE settings shared by every CVODE-based method: rtol = atol = tol.
-struct CvodeSetting {
+/// The setting of one run of a method: rtol = atol = tol for the adaptive ones.
+struct MethodSetting {
   Scheme scheme = Scheme::adams;
   double tol = 1e-6;
+  int substeps = 0;  ///< RK4: fixed steps per output interval
   /// BDF: tumble's scenes give CVODE their exact Jacobian (tumble::jacobian); false: CVODE's
   /// difference quotients (tumble_bench --difference-quotients)
   bool exact_jacobian = true;
+  /// SUNDIALS' fused vector operations (CvodeOptions::fused_vector_operations); false:
+  /// tumble_bench --fused-ops off, to measure what they change
+  bool fused = true;
 };
 
-/// tumble with parameterization P (a function per parameterization, see work_precision_tumble.hpp).
-using TumbleRunner = Run (*)(const Problem&, const CvodeSetting&, const Timing&);
+/// How a method runs one problem at one setting.
+using MethodRunner = Run (*)(const Problem&, const MethodSetting&, const Timing&);
 
-struct Parameterization {
-  std::string name;
-  bool quick = false;  ///< in the default (quick) sweep; all are in --full
-  TumbleRunner run = nullptr;
+/// One method of the sweep: an entry of the list in work_precision_methods.cpp. Adding a method
+/// (another state form of tumble's scene, another integrator on it) is adding one entry.
+struct Method {
+  std::string label;   ///< the report's row label, without the scheme ("EulerParameters")
+  std::string family;  ///< "tumble", "floor", "peer" or "rk4": the CSV's family, the plot's style
+  std::string parameterization = "EulerParameters";  ///< of the state it integrates (CSV)
+  std::vector<Scheme> schemes;                       ///< one curve per scheme
+  bool quick = true;  ///< in the default (quick) sweep; every method is in --full
+  /// Whether it can run problem p (nullptr: every problem).
+  bool (*applies)(const Problem&) = nullptr;
+  MethodRunner run = nullptr;
 };
 
-/// The parameterizations, in the order of the report (instantiated in work_precision_tumble_*.cpp).
-void add_parameterizations_a(std::vector<Parameterization>& list);
-void add_parameterizations_b(std::vector<Parameterization>& list);
+/// The methods, in the order of the report (work_precision_methods.cpp). tumble's are
+/// instantiated in work_precision_tumble_*.cpp.
+std::vector<Method> all_methods();
+void add_tumble_methods_a(std::vector<Method>& list);
+void add_tumble_methods_b(std::vector<Method>& list);
 
-/// The hand-written Euler-parameter right-hand side in a plain tumble::Cvode (the CVODE floor).
-/// Only for the problems with a closed form (it has no spring).
-Run run_handwritten(const Problem& p, const CvodeSetting& c, const Timing& timing);
+/// The hand-written Euler-parameter [q; qdot] right-hand side (14 states, tumble's state form)
+/// in a plain tumble::Cvode with tumble's settings and constraint handling.
+Run run_handwritten(const Problem& p, const MethodSetting& c, const Timing& timing);
 
 /// Fixed-step classical RK4 on the Euler-parameter equations (first-order form: p and omega),
-/// `substeps` steps per output interval, with the quaternion normalized after every step.
-Run run_rk4(const Problem& p, int substeps, const Timing& timing);
+/// c.substeps steps per output interval, with the quaternion normalized after every step.
+Run run_rk4(const Problem& p, const MethodSetting& c, const Timing& timing);
+
+/// The first-order floors (work_precision_floor_rhs.hpp): [p; omega] (7 states) on the
+/// torque-free problems framed at the centroid, [r_g; p; v_g; omega] (13) on the others.
+/// CVODE (c.scheme Adams or BDF) through tumble::Cvode, no projection:
+Run run_floor_cvode(const Problem& p, const MethodSetting& c, const Timing& timing);
+/// ARKODE ERKStep with the Fehlberg 7(8) table:
+Run run_floor_arkode_f78(const Problem& p, const MethodSetting& c, const Timing& timing);
+/// Boost.Odeint, std::array state: controlled runge_kutta_fehlberg78, and runge_kutta_dopri5
+/// with dense output:
+Run run_floor_odeint_rkf78(const Problem& p, const MethodSetting& c, const Timing& timing);
+Run run_floor_odeint_dopri5(const Problem& p, const MethodSetting& c, const Timing& timing);
 
 /// Pinocchio's aba in the same CVODE setup (work_precision_pinocchio.cpp).
 bool pinocchio_available();
 std::string pinocchio_description();
-Run run_pinocchio(const Problem& p, const CvodeSetting& c, const Timing& timing);
+Run run_pinocchio(const Problem& p, const MethodSetting& c, const Timing& timing);
+
+/// Whether a problem has no spring (the floors with a closed form of their own: no spring).
+inline bool closed_form_problem(const Problem& p) { return p.stiffness == 0; }
 
 // ---- the scaling study (work_precision_scaling.cpp) ------------------------------------------
 

@@ -25,11 +25,12 @@ void write_runs_csv(const std::filesystem::path& path, const std::vector<Row>& r
        "convergence_failures,reinits,chart_switches,constraint_drift\n";
   for (const Row& r : rows) {
     const Job& j = r.job;
-    const bool cv = j.family != Family::rk4;
-    f << csv_quote(j.problem->id) << ',' << csv_quote(j.method()) << ',' << family_name(j.family)
-      << ',' << csv_quote(j.family == Family::tumble ? j.param->name : "EulerParameters") << ','
-      << scheme_name(j.scheme) << ',' << (cv ? num(j.tol) : "") << ',' << (cv ? num(j.tol) : "")
-      << ',' << (cv ? num(j.tol) : "") << ',' << (cv ? "" : std::to_string(j.substeps)) << ','
+    const bool cv = !j.fixed_step();
+    f << csv_quote(j.problem->id) << ',' << csv_quote(j.method()) << ','
+      << csv_quote(j.method_entry->family) << ',' << csv_quote(j.method_entry->parameterization)
+      << ',' << scheme_name(j.scheme) << ',' << (cv ? num(j.tol) : "") << ','
+      << (cv ? num(j.tol) : "") << ',' << (cv ? num(j.tol) : "") << ','
+      << (cv ? "" : std::to_string(j.substeps)) << ','
       << (cv ? "" : num(j.problem->times.front() / j.substeps)) << ',' << (r.run.ok ? 1 : 0) << ','
       << csv_quote(r.run.error) << ',' << num(r.run.seconds) << ',' << num(r.run.seconds_median)
       << ',' << num(r.run.wall_seconds) << ',' << num(r.run.cpu_seconds) << ',' << r.run.reps << ','

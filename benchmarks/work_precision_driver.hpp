@@ -41,6 +41,7 @@ struct Options {
   bool plots = true;
   bool micro = true;
   bool exact_jacobian = true;  // tumble with BDF: the scene's Jacobian, or difference quotients
+  bool fused_ops = true;       // CVODE methods: SUNDIALS' fused vector operations
   TimeBase clock = TimeBase::wall;
   std::string python = TUMBLE_BENCH_PLOT_PYTHON;
 };
@@ -53,17 +54,14 @@ std::optional<Options> parse_options(int argc, char** argv);
 /// The tolerances rtol = atol of the CVODE methods, unless --tolerances says otherwise.
 extern const std::vector<double> kTolerances;
 
-enum class Family { tumble, handwritten, pinocchio, rk4 };
-const char* family_name(Family f);
-
 /// One measurement to make: a method on a problem at one setting.
 struct Job {
   const Problem* problem = nullptr;
-  Family family = Family::tumble;
-  const Parameterization* param = nullptr;  // tumble only
+  const Method* method_entry = nullptr;
   Scheme scheme = Scheme::adams;
-  double tol = 0;                             // CVODE methods
-  int substeps = 0;                           // RK4: steps per output interval
+  double tol = 0;    // adaptive methods
+  int substeps = 0;  // RK4: steps per output interval
+  [[nodiscard]] bool fixed_step() const { return scheme == Scheme::rk4; }
   [[nodiscard]] std::string method() const;   ///< "tumble EulerParameters adams", ...
   [[nodiscard]] std::string setting() const;  ///< "tol=1.0e-06" or "h=2.5e-01"
 };
@@ -75,11 +73,11 @@ struct Row {
   Errors errors;
 };
 
-/// The parameterizations of the run (the default's six, or all sixteen with --full).
-std::vector<Parameterization> parameterizations(const Options& o);
+/// The methods of the run (the quick ones, or all with --full).
+std::vector<Method> methods(const Options& o);
 /// Every run of the work-precision sweep, problem by problem, filtered by --methods.
 std::vector<Job> plan_jobs(const Options& o, const std::vector<Problem>& problems,
-                           const std::vector<Parameterization>& params);
+                           const std::vector<Method>& methods);
 /// Makes one run and measures its errors (the samples are then dropped).
 Row run_job(const Job& j, const Options& o, const Timing& timing);
 /// The stiff top's reference integration (it has no closed form), into p.reference.
@@ -96,7 +94,8 @@ using MicroTimes = std::map<std::string, double>;
 std::string header_text(const Options& o, const std::filesystem::path& out, int runs);
 /// (a) ns per call of the core assembly per parameterization, with the baselines and peers.
 std::string micro_table(const MicroTimes& ns);
-/// (b) time to reach max attitude error 1e-3 / 1e-6 / 1e-9 and the best error, per method.
+/// (b) time to reach max attitude error 1e-3 / 1e-6 / 1e-9 / 1e-11 and the best error, per
+/// method.
 std::string problem_table(const Problem& p, const std::vector<Row>& rows);
 /// The column headings of the work-precision tables (one for all problems).
 std::string problem_table_header();

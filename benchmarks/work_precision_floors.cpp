@@ -111,7 +111,7 @@ Eigen::Vector4d quaternion_of(const Eigen::Matrix3d& r) {
 
 }  // namespace
 
-Run run_handwritten(const Problem& p, const CvodeSetting& c, const Timing& timing) {
+Run run_handwritten(const Problem& p, const MethodSetting& c, const Timing& timing) {
   Run run;
   run.samples.resize(p.times.size());
   // Initial state: the centroid's position and velocity, p and pdot.
@@ -126,6 +126,7 @@ Run run_handwritten(const Problem& p, const CvodeSetting& c, const Timing& timin
   o.rtol = c.tol;
   o.atol = c.tol;
   o.projection = c.scheme == Scheme::bdf;
+  o.fused_vector_operations = c.fused;
   const HandWrittenSystem system{p.inertia, p.inertia.cwiseInverse(), p.gravity,
                                  c.scheme != Scheme::bdf};
   std::vector<double> times;
@@ -184,7 +185,8 @@ struct Rk4System {
 
 }  // namespace
 
-Run run_rk4(const Problem& p, int substeps, const Timing& timing) {
+Run run_rk4(const Problem& p, const MethodSetting& c, const Timing& timing) {
+  const int substeps = c.substeps;
   Run run;
   run.samples.resize(p.times.size());
   Rk4State x0;

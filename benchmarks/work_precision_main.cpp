@@ -89,12 +89,12 @@ int run(const Options& o) {
   const fs::path out = fs::absolute(o.out);
   fs::create_directories(out);
 
-  const std::vector<Parameterization> params = parameterizations(o);
-  std::vector<Problem> problems = make_problems(o.outputs);
+  const std::vector<Method> list = methods(o);
+  std::vector<Problem> problems = make_problems(o.outputs, o.full);
   std::erase_if(problems, [&](const Problem& p) {
     return !o.problems.empty() && !o.problems.contains(p.id);
   });
-  const std::vector<Job> jobs = plan_jobs(o, problems, params);
+  const std::vector<Job> jobs = plan_jobs(o, problems, list);
   const ScalingPlan plan = scaling_plan(o);
 
   const std::string header = header_text(o, out, static_cast<int>(jobs.size()));

@@ -25,7 +25,8 @@ void usage() {
       "                    (default: %s)\n"
       "  --reps N          timed runs per configuration, the best is kept (default: 3)\n"
       "  --outputs N       output times per problem at which errors are measured (default: 200)\n"
-      "  --problems LIST   comma-separated subset of: tumbling,spinner,gravity_offset,stiff_top\n"
+      "  --problems LIST   comma-separated subset of: tumbling,minor_axis,major_axis,spinner,\n"
+      "                    gravity_offset,stiff_top,stiff_top_damped\n"
       "  --methods LIST    only methods whose label contains one of these comma-separated\n"
       "                    strings (e.g. 'EulerParameters adams,hand-written,RK4')\n"
       "  --tolerances LIST comma-separated CVODE tolerances (default: 1e-3,1e-4,...,1e-13)\n"
@@ -38,6 +39,9 @@ void usage() {
       "  --difference-quotients\n"
       "                    tumble with BDF: CVODE's difference-quotient Jacobian instead of the\n"
       "                    scene's exact one (to measure what the exact Jacobian changes)\n"
+      "  --fused-ops on|off\n"
+      "                    CVODE methods: SUNDIALS' fused vector operations (default: on; off to\n"
+      "                    measure what they change)\n"
       "  --python PATH     the Python with matplotlib for the plots (default: %s)\n",
       TUMBLE_BENCH_DEFAULT_OUT, TUMBLE_BENCH_PLOT_PYTHON);
 }
@@ -108,6 +112,12 @@ std::optional<Options> parse_options(int argc, char** argv) {
       o.micro = false;
     } else if (a == "--difference-quotients") {
       o.exact_jacobian = false;
+    } else if (a == "--fused-ops") {
+      const std::string f = value();
+      if (f != "on" && f != "off") {
+        throw std::invalid_argument("--fused-ops takes on or off (got '" + f + "')");
+      }
+      o.fused_ops = f == "on";
     } else if (a == "--python") {
       o.python = value();
     } else {

@@ -92,7 +92,7 @@ std::string pinocchio_description() {
   return std::string("Pinocchio ") + PINOCCHIO_VERSION + " (aba, header-only, same compiler flags)";
 }
 
-Run run_pinocchio(const Problem& p, const CvodeSetting& c, const Timing& timing) {
+Run run_pinocchio(const Problem& p, const MethodSetting& c, const Timing& timing) {
   Run run;
   run.samples.resize(p.times.size());
   const Eigen::Quaterniond q0(p.r0);
@@ -106,6 +106,7 @@ Run run_pinocchio(const Problem& p, const CvodeSetting& c, const Timing& timing)
   o.rtol = c.tol;
   o.atol = c.tol;
   o.projection = c.scheme == Scheme::bdf;
+  o.fused_vector_operations = c.fused;
   std::vector<double> times;
   try {
     do {
@@ -146,7 +147,7 @@ std::string pinocchio_description() {
   return "Pinocchio not found at configure time (pip install pin, then re-run cmake)";
 }
 
-Run run_pinocchio(const Problem& /*p*/, const CvodeSetting& /*c*/, const Timing& /*timing*/) {
+Run run_pinocchio(const Problem& /*p*/, const MethodSetting& /*c*/, const Timing& /*timing*/) {
   Run run;
   run.ok = false;
   run.error = pinocchio_description();

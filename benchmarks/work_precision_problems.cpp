@@ -210,7 +210,7 @@ std::vector<Sample> stiff_top_reference(const Problem& p, int substeps, double& 
   return fine;
 }
 
-std::vector<Problem> make_problems(int output_count) {
+std::vector<Problem> make_problems(int output_count, bool full) {
   auto times = [output_count](double t_end) {
     std::vector<double> t(static_cast<std::size_t>(output_count));
     for (int k = 0; k < output_count; ++k) {
@@ -231,13 +231,36 @@ std::vector<Problem> make_problems(int output_count) {
   tumbling.omega0 = {0.1, 2.0, 0.05};
   list.push_back(tumbling);
 
+  // Stable spins about the two stable principal axes, with a small wobble.
+  Problem minor = tumbling;
+  minor.kind = ProblemKind::minor_axis;
+  minor.id = "minor_axis";
+  minor.title =
+      "spin near the minor axis, I = diag(1, 2, 3), omega0 = (2, 0.1, 0.05) rad/s, T = 50 s";
+  minor.omega0 = {2.0, 0.1, 0.05};
+  list.push_back(minor);
+
+  Problem major = tumbling;
+  major.kind = ProblemKind::major_axis;
+  major.id = "major_axis";
+  major.title =
+      "spin near the major axis, I = diag(1, 2, 3), omega0 = (0.05, 0.1, 2) rad/s, T = 50 s";
+  major.omega0 = {0.05, 0.1, 2.0};
+  list.push_back(major);
+
+  // 200 rad/s for 50 s is 1600 turns: tumble's runs at tight tolerances take seconds each
+  // (3.4e6 BDF steps for ZXZ at tol 1e-13), so the quick run integrates 2 s (64 turns, the
+  // spinner's length before 2026-11-25) with every other tolerance; --full integrates the 50 s
+  // with all of them.
   Problem spinner = tumbling;
   spinner.kind = ProblemKind::spinner;
   spinner.id = "spinner";
-  spinner.title =
-      "fast spin about the minor axis, I = diag(1, 2, 3), omega0 = (200, 0.5, 0.3) rad/s, T = 2 s";
-  spinner.t_end = 2.0;
+  spinner.t_end = full ? 50.0 : 2.0;
+  spinner.title = "fast spin about the minor axis, I = diag(1, 2, 3), omega0 = (200, 0.5, 0.3) "
+                  "rad/s, T = " +
+                  std::string(full ? "50" : "2") + " s";
   spinner.omega0 = {200.0, 0.5, 0.3};
+  spinner.quick_stride = 2;
   list.push_back(spinner);
 
   Problem thrown;
@@ -274,6 +297,23 @@ std::vector<Problem> make_problems(int output_count) {
   top.damping = 50.0;  // c / (2 sqrt(k m)) = 0.05
   top.exact = false;
   list.push_back(top);
+
+  // The same top on an overdamped spring-damper (damping ratio 20): the tip's fast mode decays
+  // at c/m = 4e4 s^-1 and bounds an explicit method's step (about 2.8 / 4e4 = 70 us for RK
+  // methods of order 4-8) while the solution stays smooth, which BDF is for. The stiff_top
+  // above (damping ratio 0.05) oscillates at 1000 rad/s: accuracy, not stability, sets the
+  // step there.
+  Problem damped = top;
+  damped.id = "stiff_top_damped";
+  // Adams and the explicit methods take about 1e5 stability-bound steps per second of it: the
+  // quick run integrates 0.1 s (15 rad of spin), --full the whole second.
+  damped.t_end = full ? 1.0 : 0.1;
+  damped.title = "the same top on an overdamped spring-damper at its tip, k/m = 1e6 s^-2, "
+                 "c/m = 4e4 s^-1, T = " +
+                 std::string(full ? "1" : "0.1") + " s";
+  damped.damping = 2.0e4;  // c / (2 sqrt(k m)) = 20
+  damped.quick_stride = 2;
+  list.push_back(damped);
 
   for (Problem& p : list) {
     p.times = times(p.t_end);

@@ -2,11 +2,9 @@
 // setting), how one is made and measured, the stiff top's reference integration, and the sizes
 // of the scaling study.
 //
-// A method is tumble with one orientation parameterization (work_precision_tumble.hpp) or a
-// reference run in the same run: the hand-written CVODE floor and fixed-step RK4
-// (work_precision_floors.cpp), Pinocchio's aba in CVODE when installed
-// (work_precision_pinocchio.cpp). CVODE methods sweep rtol = atol over kTolerances with Adams and
-// BDF; RK4 sweeps its step size.
+// The methods are the entries of the list in work_precision_methods.cpp (tumble per
+// parameterization, the hand-written floors, the peers, RK4). Adaptive methods sweep
+// rtol = atol over kTolerances with each of their schemes; RK4 sweeps its step size.
 
 #include <algorithm>
 #include <cmath>
@@ -22,36 +20,13 @@ namespace tumble::bench {
 const std::vector<double> kTolerances = {1e-3, 1e-4,  1e-5,  1e-6,  1e-7, 1e-8,
                                          1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
 
-const char* family_name(Family f) {
-  switch (f) {
-    case Family::tumble:
-      return "tumble";
-    case Family::handwritten:
-      return "hand-written";
-    case Family::pinocchio:
-      return "pinocchio";
-    case Family::rk4:
-      return "rk4";
-  }
-  return "?";
-}
-
 std::string Job::method() const {
-  switch (family) {
-    case Family::tumble:
-      return "tumble " + param->name + " " + scheme_name(scheme);
-    case Family::handwritten:
-      return std::string("hand-written EP ") + scheme_name(scheme);
-    case Family::pinocchio:
-      return std::string("Pinocchio aba ") + scheme_name(scheme);
-    case Family::rk4:
-      return "RK4 fixed step";
-  }
-  return "?";
+  const std::string prefix = method_entry->family == "tumble" ? "tumble " : "";
+  return prefix + method_entry->label + " " + scheme_name(scheme);
 }
 
 std::string Job::setting() const {
-  if (family == Family::rk4) {
+  if (fixed_step()) {
     const double dt = problem->times.front();
     return "h=" + sci(dt / substeps);
   }
@@ -78,43 +53,37 @@ std::vector<int> rk4_substeps(const Problem& p) {
 
 }  // namespace
 
-std::vector<Parameterization> parameterizations(const Options& o) {
-  std::vector<Parameterization> params;
-  add_parameterizations_a(params);
-  add_parameterizations_b(params);
-  std::erase_if(params, [&](const Parameterization& p) { return !o.full && !p.quick; });
-  return params;
+std::vector<Method> methods(const Options& o) {
+  std::vector<Method> list = all_methods();
+  std::erase_if(list, [&](const Method& m) { return !o.full && !m.quick; });
+  return list;
 }
 
 std::vector<Job> plan_jobs(const Options& o, const std::vector<Problem>& problems,
-                           const std::vector<Parameterization>& params) {
+                           const std::vector<Method>& methods) {
   const std::vector<double>& tolerances = o.tolerances.empty() ? kTolerances : o.tolerances;
   std::vector<Job> jobs;
   for (const Problem& p : problems) {
-    for (const Parameterization& par : params) {
-      for (Scheme s : {Scheme::adams, Scheme::bdf}) {
-        for (double tol : tolerances) {
-          jobs.push_back({&p, Family::tumble, &par, s, tol, 0});
+    std::vector<double> ladder;
+    const int stride = o.full || !o.tolerances.empty() ? 1 : p.quick_stride;
+    for (std::size_t k = 0; k < tolerances.size(); k += static_cast<std::size_t>(stride)) {
+      ladder.push_back(tolerances[k]);
+    }
+    for (const Method& m : methods) {
+      if (m.applies != nullptr && !m.applies(p)) {
+        continue;
+      }
+      for (Scheme s : m.schemes) {
+        if (s == Scheme::rk4) {
+          for (int sub : rk4_substeps(p)) {
+            jobs.push_back({&p, &m, s, 0, sub});
+          }
+          continue;
+        }
+        for (double tol : ladder) {
+          jobs.push_back({&p, &m, s, tol, 0});
         }
       }
-    }
-    if (!p.exact) {
-      continue;  // the references below need a closed-form problem (no spring)
-    }
-    for (Scheme s : {Scheme::adams, Scheme::bdf}) {
-      for (double tol : tolerances) {
-        jobs.push_back({&p, Family::handwritten, nullptr, s, tol, 0});
-      }
-    }
-    if (pinocchio_available()) {
-      for (Scheme s : {Scheme::adams, Scheme::bdf}) {
-        for (double tol : tolerances) {
-          jobs.push_back({&p, Family::pinocchio, nullptr, s, tol, 0});
-        }
-      }
-    }
-    for (int sub : rk4_substeps(p)) {
-      jobs.push_back({&p, Family::rk4, nullptr, Scheme::rk4, 0, sub});
     }
   }
   std::erase_if(jobs, [&](const Job& j) {
@@ -131,20 +100,12 @@ std::vector<Job> plan_jobs(const Options& o, const std::vector<Problem>& problem
 Row run_job(const Job& j, const Options& o, const Timing& timing) {
   const Problem& p = *j.problem;
   Row r{j, {}, {}};
-  switch (j.family) {
-    case Family::tumble:
-      r.run = j.param->run(p, {j.scheme, j.tol, o.exact_jacobian}, timing);
-      break;
-    case Family::handwritten:
-      r.run = run_handwritten(p, {j.scheme, j.tol}, timing);
-      break;
-    case Family::pinocchio:
-      r.run = run_pinocchio(p, {j.scheme, j.tol}, timing);
-      break;
-    case Family::rk4:
-      r.run = run_rk4(p, j.substeps, timing);
-      break;
-  }
+  const MethodSetting setting{.scheme = j.scheme,
+                              .tol = j.tol,
+                              .substeps = j.substeps,
+                              .exact_jacobian = o.exact_jacobian,
+                              .fused = o.fused_ops};
+  r.run = j.method_entry->run(p, setting, timing);
   r.errors = evaluate(p, r.run);
   r.run.samples.clear();
   r.run.samples.shrink_to_fit();

@@ -21,12 +21,13 @@
 
 namespace tumble::bench {
 
-inline SceneIntegratorOptions scene_options(const CvodeSetting& c) {
+inline SceneIntegratorOptions scene_options(const MethodSetting& c) {
   SceneIntegratorOptions o;
   o.cvode.method = c.scheme == Scheme::bdf ? CvodeMethod::bdf : CvodeMethod::adams;
   o.cvode.rtol = c.tol;
   o.cvode.atol = c.tol;
   o.cvode.use_system_jacobian = c.exact_jacobian;
+  o.cvode.fused_vector_operations = c.fused;
   return o;
 }
 
@@ -43,7 +44,7 @@ inline MassProperties<> mass_properties(const Problem& p) {
 /// record a Sample at each. `build(scene)` adds the body and its loads and returns its id; it
 /// runs once, before the clock starts (the scene is only read by the runs).
 template <class SceneT, class Body, class Build>
-Run run_scene(const Problem& p, const CvodeSetting& c, const Timing& timing, Build build) {
+Run run_scene(const Problem& p, const MethodSetting& c, const Timing& timing, Build build) {
   Run run;
   run.samples.resize(p.times.size());
   std::vector<double> times;
@@ -78,9 +79,11 @@ Run run_scene(const Problem& p, const CvodeSetting& c, const Timing& timing, Bui
 }
 
 /// tumble on problem `p` with parameterization P.
-template <class P> Run run_tumble(const Problem& p, const CvodeSetting& c, const Timing& timing) {
+template <class P> Run run_tumble(const Problem& p, const MethodSetting& c, const Timing& timing) {
   switch (p.kind) {
     case ProblemKind::tumbling:
+    case ProblemKind::minor_axis:
+    case ProblemKind::major_axis:
     case ProblemKind::spinner: {
       using Body = RigidBody<P>;
       return run_scene<Scene<Bodies<Body>>, Body>(p, c, timing, [&](auto& scene) {
@@ -115,8 +118,15 @@ template <class P> Run run_tumble(const Problem& p, const CvodeSetting& c, const
   return failed;
 }
 
-template <class P> Parameterization parameterization(bool quick) {
-  return {std::string(P::name), quick, &run_tumble<P>};
+/// The method entry of tumble with parameterization P on [q; qdot], CVODE Adams and BDF.
+template <class P> Method tumble_method(bool quick) {
+  return {.label = std::string(P::name),
+          .family = "tumble",
+          .parameterization = std::string(P::name),
+          .schemes = {Scheme::adams, Scheme::bdf},
+          .quick = quick,
+          .applies = nullptr,
+          .run = &run_tumble<P>};
 }
 
 }  // namespace tumble::bench

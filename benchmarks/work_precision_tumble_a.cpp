@@ -9,13 +9,13 @@
 
 namespace tumble::bench {
 
-void add_parameterizations_a(std::vector<Parameterization>& list) {
-  list.push_back(parameterization<EulerParameters>(true));
-  list.push_back(parameterization<RodriguesParameters>(true));
-  list.push_back(parameterization<ModifiedRodriguesParameters>(true));
-  list.push_back(parameterization<RotationVector>(true));
-  list.push_back(parameterization<EulerZYX>(true));
-  list.push_back(parameterization<EulerZXZ>(true));
+void add_tumble_methods_a(std::vector<Method>& list) {
+  list.push_back(tumble_method<EulerParameters>(true));
+  list.push_back(tumble_method<RodriguesParameters>(true));
+  list.push_back(tumble_method<ModifiedRodriguesParameters>(true));
+  list.push_back(tumble_method<RotationVector>(true));
+  list.push_back(tumble_method<EulerZYX>(true));
+  list.push_back(tumble_method<EulerZXZ>(true));
 }
 
 }  // namespace tumble::bench

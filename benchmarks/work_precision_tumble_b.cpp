@@ -8,19 +8,19 @@
 
 namespace tumble::bench {
 
-void add_parameterizations_b(std::vector<Parameterization>& list) {
+void add_tumble_methods_b(std::vector<Method>& list) {
   // Tait-Bryan (ZYX is in work_precision_tumble_a.cpp)
-  list.push_back(parameterization<EulerXYZ>(false));
-  list.push_back(parameterization<EulerXZY>(false));
-  list.push_back(parameterization<EulerYXZ>(false));
-  list.push_back(parameterization<EulerYZX>(false));
-  list.push_back(parameterization<EulerZXY>(false));
+  list.push_back(tumble_method<EulerXYZ>(false));
+  list.push_back(tumble_method<EulerXZY>(false));
+  list.push_back(tumble_method<EulerYXZ>(false));
+  list.push_back(tumble_method<EulerYZX>(false));
+  list.push_back(tumble_method<EulerZXY>(false));
   // proper Euler (ZXZ is in work_precision_tumble_a.cpp)
-  list.push_back(parameterization<EulerXYX>(false));
-  list.push_back(parameterization<EulerXZX>(false));
-  list.push_back(parameterization<EulerYXY>(false));
-  list.push_back(parameterization<EulerYZY>(false));
-  list.push_back(parameterization<EulerZYZ>(false));
+  list.push_back(tumble_method<EulerXYX>(false));
+  list.push_back(tumble_method<EulerXZX>(false));
+  list.push_back(tumble_method<EulerYXY>(false));
+  list.push_back(tumble_method<EulerYZY>(false));
+  list.push_back(tumble_method<EulerZYZ>(false));
 }
 
 }  // namespace tumble::bench

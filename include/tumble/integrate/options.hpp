@@ -78,6 +78,12 @@ struct CvodeOptions {
   bool project_error = true;          ///< project the error estimate too (CVodeSetProjErrEst)
   double projection_tolerance = 0.1;  ///< epsProj handed to project() (CVodeSetEpsProj)
   long projection_frequency = 1;      ///< project every this many steps (CVodeSetProjFrequency)
+
+  /// Fused vector operations of the serial N_Vector (N_VEnableFusedOps_Serial): CVODE's linear
+  /// combinations of many vectors (the Nordsieck history, the error test) in one pass over
+  /// memory instead of one N_VLinearSum per pair. Same results to rounding; false: SUNDIALS'
+  /// default (one operation per call).
+  bool fused_vector_operations = true;
 };
 
 /// Counters of a Cvode integrator, totals since construction (across reinitializations).

@@ -197,7 +197,8 @@ template <class System> class CvodeCore {
   void setup(const Eigen::Ref<const Eigen::VectorXd>& y0) {
     context_ = make_context(errors_);
     SUNContext ctx = context_.get();
-    y_.reset(require_allocated(N_VNew_Serial(n_, ctx)));
+    // Fused operations on y_ before CVodeInit: CVODE's work vectors are clones of it.
+    y_ = make_serial_vector(n_, ctx, options_.fused_vector_operations);
     view(y_.get()) = y0;
 
     const bool adams = options_.method == CvodeMethod::adams;

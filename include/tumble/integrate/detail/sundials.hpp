@@ -127,6 +127,20 @@ template <class T> T* require_allocated(T* p) {
   return p;
 }
 
+/// A serial N_Vector of length n, with SUNDIALS' fused and vector-array operations enabled when
+/// `fused` is true (they are off by default). CVODE clones every vector it works with (the
+/// Nordsieck array, the error weights, the nonlinear solver's and projection's work vectors)
+/// from the y0 given to CVodeInit, and a clone inherits the operations of the vector it was
+/// cloned from: so this must be the vector handed to CVodeInit, set before that call (NVECTOR
+/// serial module, "fused and vector array operations", SUNDIALS 6.x and 7.x alike).
+inline NVectorHandle make_serial_vector(sunindextype n, SUNContext ctx, bool fused) {
+  NVectorHandle v(require_allocated(N_VNew_Serial(n, ctx)));
+  if (fused && N_VEnableFusedOps_Serial(v.get(), SUNTRUE) != 0) {
+    throw std::runtime_error("tumble::Cvode: N_VEnableFusedOps_Serial failed");
+  }
+  return v;
+}
+
 /// A SUNContext whose errors are captured by `capture` (which must outlive the context).
 inline ContextHandle make_context([[maybe_unused]] ErrorCapture& capture) {
   SUNContext ctx = nullptr;
