@@ -54,6 +54,16 @@ template <StateForm F>
 using MixedScene = Scene<Bodies<EPOff, ZYX, MRPOff, RV>,
                          Loads<tumble::UniformGravity, tumble::SpringDamperBetween>, F>;
 
+}  // namespace
+
+// Every member of the quasi-form scene and its preconditioner compiles, used or not.
+template class tumble::Scene<Bodies<EPOff, ZYX, MRPOff, RV>,
+                             Loads<tumble::UniformGravity, tumble::SpringDamperBetween>,
+                             StateForm::quasi_velocities>;
+template class tumble::BlockPreconditioner<MixedScene<StateForm::quasi_velocities>>;
+
+namespace {
+
 MassProperties<double> offset_mass(const Vector3d& centroid) {
   Matrix3d i;
   i << 1.0, 0.1, -0.05, 0.1, 2.0, 0.2, -0.05, 0.2, 2.5;
