@@ -17,6 +17,11 @@
 // parameterization (P::thetaddot), which for Euler parameters also imposes p.pddot = -|pdot|^2,
 // the second derivative of the constraint |p| = 1 (the solution of the constrained system).
 // At the centroid (Ref == centroid) r_g = 0, and the coupling terms are not computed at all.
+//
+// The pair (a_c, alpha) is public (velocity_rates): it is the whole right-hand side of the
+// quasi-velocity state [r_oc; theta; v; omega] (quasi_rates), where rdot_oc = v, thetadot comes
+// from the inverse map P::thetadot(theta, omega), vdot = a_c and omegadot = alpha; neither
+// thetaddot nor Gdot thetadot is formed there.
 
 #include <sstream>
 #include <stdexcept>
@@ -34,6 +39,14 @@
 #include "tumble/orientation/concept.hpp"
 
 namespace tumble {
+
+/// The velocity rates of a body (Newton-Euler, see the file comment): the acceleration of the
+/// reference point c, inertial components (a_c = rddot_oc), and the angular acceleration alpha,
+/// body components (alpha = omegadot, Eq. 1.10).
+template <class S> struct VelocityRates {
+  Vector3<S> acceleration;
+  Vector3<S> alpha;
+};
 
 namespace detail {
 /// True when Gdot thetadot is identically zero for P (Euler parameters), so that it is skipped.
@@ -55,12 +68,14 @@ class RigidBody {
   static constexpr bool at_centroid = Ref == ReferencePoint::centroid;
   static constexpr int n_theta = P::size;
   static constexpr int nq = 3 + P::size;  ///< size of q (and of qdot)
+  static constexpr int nx = nq + 6;       ///< size of the quasi-velocity state [q; v; omega]
 
   using Theta = typename P::template Coords<S>;
   using Coords = Vector<S, nq>;            ///< q, qdot, qddot, f_v, Q
   using MassMatrix = Matrix<S, nq, nq>;    ///< M (Eq. 1.23)
   using PointJacobian = Matrix<S, 3, nq>;  ///< L_r (Eq. 1.8)
   using Kinematics = BodyKinematics<S, Ref>;
+  using QuasiCoords = Vector<S, nx>;  ///< [r_oc; theta; v; omega] and its rate
 
   /// \throws std::invalid_argument if Ref is centroid but the mass properties put the centroid
   ///         away from the reference point.
@@ -240,6 +255,41 @@ class RigidBody {
                               &k.rotation);
   }
 
+  /// The velocity rates (a_c inertial, alpha body) for the attitude theta, the angular velocity
+  /// omega (body) and the wrench w reduced to c: the Newton-Euler closed form of the file comment,
+  /// equivalent to M qddot = f_v + Q (Eq. 1.32; Eq. 1.33 at the centroid). Not checked for
+  /// finiteness: accelerations() and quasi_rates() check their whole result.
+  [[nodiscard]] VelocityRates<S> velocity_rates(const Theta& th, const Vector3<S>& om,
+                                                const Wrench<S>& w) const {
+    return velocity_rates_impl(th, om, w, nullptr);
+  }
+  /// The same for a body whose kinematics are evaluated (omega and, off the centroid, R from k;
+  /// R may include a chart base).
+  [[nodiscard]] VelocityRates<S> velocity_rates(const Theta& th, const Kinematics& k,
+                                                const Wrench<S>& w) const {
+    return velocity_rates_impl(th, k.omega, w, &k.rotation);
+  }
+
+  /// The rate of the quasi-velocity state x = [r_oc; theta; v; omega]:
+  ///   xdot = [v; P::thetadot(theta, omega); a_c; alpha]
+  /// (the inverse map of Eq. 1.5, then velocity_rates). For Euler parameters thetadot is tangent
+  /// to |p| = 1 whatever |p| (p.L(p)^T omega = 0).
+  /// \throws NonFiniteError when the result is not finite.
+  [[nodiscard]] QuasiCoords quasi_rates(const QuasiCoords& x, const Wrench<S>& w) const {
+    const Theta th = x.template segment<n_theta>(3);
+    const Vector3<S> om = x.template tail<3>();
+    return quasi_rates_impl(x.template head<nq>(), th, x.template segment<3>(nq), om,
+                            velocity_rates_impl(th, om, w, nullptr), w);
+  }
+  /// The same, for a body and its kinematics already evaluated (the scene's hot path: v and omega
+  /// are read from k).
+  [[nodiscard]] QuasiCoords quasi_rates(const Coords& q, const Kinematics& k,
+                                        const Wrench<S>& w) const {
+    const Theta th = theta(q);
+    return quasi_rates_impl(q, th, k.velocity, k.omega,
+                            velocity_rates_impl(th, k.omega, w, &k.rotation), w);
+  }
+
   // --- energy and momenta ---------------------------------------------------------------------
   /// T = 1/2 qdot^T M qdot = 1/2 m |v_g|^2 + 1/2 omega . I_g omega.
   [[nodiscard]] S kinetic_energy(const Coords& q, const Coords& qdot) const {
@@ -282,39 +332,63 @@ class RigidBody {
   Coords accelerations_impl(const Coords& q, const Theta& th, const Theta& thd,
                             const Vector3<S>& om, const Wrench<S>& w,
                             const Matrix3<S>* rot = nullptr) const {
-    const S& m = mp_.mass();
-    const Matrix3<S>& ig = mp_.inertia_centroid();
+    const VelocityRates<S> vr = velocity_rates_impl(th, om, w, rot);
     Coords qdd;
-    Vector3<S> alpha;
-    // Products are evaluated into named vectors: small expression trees that the compiler inlines
-    // whole (nested product expressions were left as out-of-line calls, 30% of the time).
-    const Vector3<S> h = ig * om;  // angular momentum about the centroid, body components
-    // Eq. (1.32) through the Newton-Euler closed form of the file comment; Eq. (1.33) at the
-    // centroid, where r_g = 0 removes the coupling terms.
-    if constexpr (at_centroid) {
-      const Vector3<S> mg = w.moment - om.cross(h);
-      alpha = mp_.inertia_centroid_inverse().lazyProduct(mg);
-      qdd.template head<3>() = w.force / m;
-    } else {
-      const Matrix3<S> r = rot ? *rot : P::rotation(th);
-      const Vector3<S>& rg = mp_.centroid();
-      // Moment about the centroid: M_g = M_c - r_g x F^f.
-      const Vector3<S> fb = r.transpose() * w.force;
-      const Vector3<S> mg = w.moment - rg.cross(fb) - om.cross(h);
-      alpha = mp_.inertia_centroid_inverse().lazyProduct(mg);
-      const Vector3<S> ab = alpha.cross(rg) + om.cross(om.cross(rg));
-      qdd.template head<3>() = w.force / m - r * ab;
-    }
-    qdd.template tail<n_theta>() = P::thetaddot(th, thd, alpha);  // Eq. (1.10)
+    qdd.template head<3>() = vr.acceleration;
+    qdd.template tail<n_theta>() = P::thetaddot(th, thd, vr.alpha);  // Eq. (1.10)
     if (!detail::all_finite_fast(qdd)) [[unlikely]] {
       throw_non_finite(q, th, w);
     }
     return qdd;
   }
 
-  [[noreturn]] static void throw_non_finite(const Coords& q, const Theta& th, const Wrench<S>& w) {
+  QuasiCoords quasi_rates_impl(const Coords& q, const Theta& th, const Vector3<S>& v,
+                               const Vector3<S>& om, const VelocityRates<S>& vr,
+                               const Wrench<S>& w) const {
+    QuasiCoords xd;
+    xd.template head<3>() = v;
+    xd.template segment<n_theta>(3) = P::thetadot(th, om);  // inverse of Eq. (1.5)
+    xd.template segment<3>(nq) = vr.acceleration;
+    xd.template tail<3>() = vr.alpha;
+    if (!detail::all_finite_fast(xd)) [[unlikely]] {
+      throw_non_finite(q, th, w, true);
+    }
+    return xd;
+  }
+
+  VelocityRates<S> velocity_rates_impl(const Theta& th, const Vector3<S>& om, const Wrench<S>& w,
+                                       const Matrix3<S>* rot) const {
+    const S& m = mp_.mass();
+    const Matrix3<S>& ig = mp_.inertia_centroid();
+    VelocityRates<S> vr;
+    // Products are evaluated into named vectors: small expression trees that the compiler inlines
+    // whole (nested product expressions were left as out-of-line calls, 30% of the time).
+    const Vector3<S> h = ig * om;  // angular momentum about the centroid, body components
+    // Eq. (1.32) through the Newton-Euler closed form of the file comment; Eq. (1.33) at the
+    // centroid, where r_g = 0 removes the coupling terms.
+    if constexpr (at_centroid) {
+      (void)rot;
+      const Vector3<S> mg = w.moment - om.cross(h);
+      vr.alpha = mp_.inertia_centroid_inverse().lazyProduct(mg);
+      vr.acceleration = w.force / m;
+    } else {
+      const Matrix3<S> r = rot ? *rot : P::rotation(th);
+      const Vector3<S>& rg = mp_.centroid();
+      // Moment about the centroid: M_g = M_c - r_g x F^f.
+      const Vector3<S> fb = r.transpose() * w.force;
+      const Vector3<S> mg = w.moment - rg.cross(fb) - om.cross(h);
+      vr.alpha = mp_.inertia_centroid_inverse().lazyProduct(mg);
+      const Vector3<S> ab = vr.alpha.cross(rg) + om.cross(om.cross(rg));
+      vr.acceleration = w.force / m - r * ab;
+    }
+    return vr;
+  }
+
+  [[noreturn]] static void throw_non_finite(const Coords& q, const Theta& th, const Wrench<S>& w,
+                                            bool quasi = false) {
     std::ostringstream os;
-    os << "tumble::RigidBody<" << P::name << ">::accelerations: non-finite result; ";
+    os << "tumble::RigidBody<" << P::name << ">::" << (quasi ? "quasi_rates" : "accelerations")
+       << ": non-finite result; ";
     if (!detail::all_finite(q)) {
       os << "the state q has a non-finite entry";
     } else if (!detail::all_finite(w.force) || !detail::all_finite(w.moment)) {
@@ -323,7 +397,8 @@ class RigidBody {
       os << "the attitude is at a singularity of " << P::name
          << " (G is singular): re-center the chart or use another parameterization";
     } else {
-      os << "the rates qdot have a non-finite entry or overflowed";
+      os << (quasi ? "the velocities (v, omega)" : "the rates qdot")
+         << " have a non-finite entry or overflowed";
     }
     throw NonFiniteError(os.str());
   }

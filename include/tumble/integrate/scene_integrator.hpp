@@ -7,7 +7,9 @@
 // scene's coordinates need:
 // - Euler parameters: with BDF, CVODE's projection onto |p| = 1, p.pdot = 0 after every step
 //   (CVodeSetProjFn; CVODE supports projection only with BDF); with Adams, the Baumgarte-
-//   stabilized constraint acceleration instead (scene/rhs.hpp).
+//   stabilized constraint acceleration instead (scene/rhs.hpp). In the quasi-velocity state form
+//   (scene/state.hpp) the projection normalizes p alone and Adams gets a first-order drift
+//   correction of p (scene/detail/body_terms.hpp); nothing here depends on the form.
 // - Three-parameter sets: one root function per body watches the distance to the chart's
 //   singularity; at a root the chart is re-centered (MRP: shadow set) and CVODE restarts.
 // - User events: the scene's root functions and actions, with a restart when the state changes.

@@ -5,8 +5,10 @@
 // inside the switch zone, the chart is re-centered:
 //   R0' = R0 R(theta) R(theta_c)^T,  theta' = theta_c,  thetadot' = P::thetadot(theta_c, omega),
 // or, for MRP, switched to the shadow set (same base). The attitude R0 R(theta) and omega are
-// unchanged. The chart base is part of the state (state.hpp), so these functions change both the
-// continuous vector y and the bases, and nothing in the scene.
+// unchanged. In the quasi-velocity state form (state.hpp) only theta and the base change: v and
+// omega are stored as such, so a switch leaves them untouched, to the last bit. The chart base is
+// part of the state (state.hpp), so these functions change both the continuous vector y and the
+// bases, and nothing in the scene.
 
 #include <span>
 #include <type_traits>
@@ -39,9 +41,7 @@ template <class Entry, class Y> void leave_chart(const Entry& e, Y& y, Matrix3<d
   using Body = std::remove_cvref_t<decltype(e.body)>;
   using P = typename Body::Param;
   static_assert(Chart<P>::has_singularity, "only three-parameter sets leave their chart");
-  constexpr int nq = Body::nq;
   const typename Body::Theta th = y.template segment<Body::n_theta>(e.offset + 3);
-  const Vector3<double> w = P::G(th) * y.template segment<Body::n_theta>(e.offset + nq + 3);
   typename Body::Theta th_new;
   if constexpr (Chart<P>::uses_shadow_set) {
     th_new = P::shadow(th);
@@ -53,7 +53,10 @@ template <class Entry, class Y> void leave_chart(const Entry& e, Y& y, Matrix3<d
     th_new = c;
   }
   y.template segment<Body::n_theta>(e.offset + 3) = th_new;
-  y.template segment<Body::n_theta>(e.offset + nq + 3) = P::thetadot(th_new, w);
+  if constexpr (!Entry::quasi) {  // thetadot' for the same omega = G(theta) thetadot
+    const Vector3<double> w = P::G(th) * y.template segment<Body::n_theta>(e.rates + 3);
+    y.template segment<Body::n_theta>(e.rates + 3) = P::thetadot(th_new, w);
+  }
 }
 
 /// Leaves the chart of every body whose root was found (which[i] != 0 for the i-th chart body,

@@ -1,7 +1,7 @@
 #pragma once
 // The Jacobian J = df/dy of a scene's right-hand side (rhs.hpp), exact to rounding, by
 // forward-mode automatic differentiation in Jet<N> scalars, block by block, never as a whole.
-// With f = [qdot; qddot] per body (reference chapter notation):
+// With f = [qdot; qddot] per body (reference chapter notation; generalized state form):
 // - the rows of qdot are [0 I];
 // - body k's block d qddot_k / d(q_k, qdot_k) comes from one evaluation of its kinematics, its
 //   one-body loads and its accelerations (the Baumgarte term included) with its own state
@@ -10,6 +10,9 @@
 //   same for b), where B_a = d qddot_a / dW_a is found in body a's evaluation (6 more directions:
 //   qddot is affine in the wrench) and dW_a/d(y_a, y_b) from one evaluation of the coupling with
 //   both states seeded (N = 2 nq_a + 2 nq_b).
+// In the quasi-velocity form, f = [v; G^{-1} omega; a_c; alpha] per body: the whole block
+// d f_k / d(q_k, v_k, omega_k) comes from the body's evaluation (N = nq_k + 6), the gain
+// B = d (a_c, alpha) / dW has 6 rows, and a coupling seeds both blocks (N = nq_a + nq_b + 12).
 // The cost is linear in the number of bodies and couplings, and nothing is allocated. The chart
 // bases are constant between switches, so they enter as constants.
 
@@ -85,57 +88,73 @@ void one_body_loads([[maybe_unused]] const SceneT& scene, [[maybe_unused]] const
       ...);
 }
 
-/// Body e's block in Jet<N>: its own state seeded along directions [0, 2 nq), and when
-/// N = 2 nq + 6 the wrench along [2 nq, 2 nq + 6), giving B = d qddot / dW for its couplings.
+/// Body e's block in Jet<N>: its own state seeded along directions [0, nb) (nb = e.block_size),
+/// and when N = nb + 6 the wrench along [nb, nb + 6), giving the gain B = d rates' / dW for its
+/// couplings (the rows of qddot, or of [vdot; omegadot]: those that start at e.rates).
+/// Generalized form: the rows of qddot (those of qdot are added by the caller). Quasi-velocity
+/// form: the whole block, since thetadot = G^{-1} omega depends on theta and omega.
 template <int N, class SceneT, class Entry, class Y, class Jac>
 void body_block_in(const SceneT& scene, SceneWorkspace<SceneT>& ws, const Entry& e, double t,
                    const Y& y, const Matrix3<double>& base, Jac& jac) {
   using Body = std::remove_cvref_t<decltype(e.body)>;
-  constexpr int nq = Body::nq;
+  constexpr int nq = Body::nq, nr = Entry::rate_size, nb = Entry::block_size;
   using J = Jet<N>;
   const RigidBody<typename Body::Param, Body::reference, J> body(e.body);
   const Vector<J, nq> q = seed<N>(y.template segment<nq>(e.offset), 0);
-  const Vector<J, nq> qd = seed<N>(y.template segment<nq>(e.offset + nq), nq);
+  const Vector<J, nr> rates = seed<N>(y.template segment<nr>(e.rates), nq);
   BodyKinematics<J, Body::reference> k;
   k.mass_properties = &body.mass_properties();
-  body_kinematics<Body>(q, qd, base, e.needs_rotation, k);
+  body_kinematics<Body, Entry::form>(q, rates, base, e.needs_rotation, k);
   Wrench<J> w;
   one_body_loads(scene, e, J(t), k, w,
                  std::make_index_sequence<std::tuple_size_v<typename SceneT::LoadTypes>>{});
-  if constexpr (N > 2 * nq) {
-    w.force += seed<N>(ws.wrench(e.id).force, 2 * nq);
-    w.moment += seed<N>(ws.wrench(e.id).moment, 2 * nq + 3);
+  if constexpr (N > nb) {
+    w.force += seed<N>(ws.wrench(e.id).force, nb);
+    w.moment += seed<N>(ws.wrench(e.id).moment, nb + 3);
   }
-  const Matrix<double, nq, N> d =
-      derivatives(body_accelerations(body, q, qd, k, w, ws.stabilize_constraints));
-  add_block(jac, e.offset + nq, e.offset, d.template leftCols<2 * nq>());
-  if constexpr (N > 2 * nq) {
-    ws.gain(e.id).template topRows<nq>() = d.template rightCols<6>();
+  if constexpr (Entry::quasi) {
+    const Matrix<double, nb, N> d =
+        derivatives(body_quasi_rates(body, Vector<J, nq>(q), k, w, ws.stabilize_constraints));
+    add_block(jac, e.offset, e.offset, d.template leftCols<nb>());
+    if constexpr (N > nb) {
+      ws.gain(e.id).template topRows<nr>() = d.template bottomRightCorner<nr, 6>();
+    }
+  } else {
+    const Vector<J, nq> qd = rates;
+    const Matrix<double, nq, N> d =
+        derivatives(body_accelerations(body, q, qd, k, w, ws.stabilize_constraints));
+    add_block(jac, e.rates, e.offset, d.template leftCols<nb>());
+    if constexpr (N > nb) {
+      ws.gain(e.id).template topRows<nr>() = d.template rightCols<6>();
+    }
   }
 }
 
-/// Rows of qddot of the body (id, offset) += B dW/d(y_a, y_b) for a wrench W in jets whose
-/// directions are [y_a (2 na); y_b].
+/// The rates' rows of a coupled body (its n = rate_size rows from `rows`) += B dW/d(y_a, y_b)
+/// for a wrench W in jets whose directions are [y_a (block of a, na entries); y_b].
 template <int n, class SceneT, class J, class Jac>
-void add_coupling_rows(SceneWorkspace<SceneT>& ws, int id, int offset, const Wrench<J>& w,
+void add_coupling_rows(SceneWorkspace<SceneT>& ws, int id, int rows, const Wrench<J>& w,
                        int offset_a, int offset_b, int na, Jac& jac) {
   constexpr int N = J::DerType::RowsAtCompileTime;
   Matrix<double, 6, N> dw;
   dw.template topRows<3>() = derivatives(w.force);
   dw.template bottomRows<3>() = derivatives(w.moment);
-  const Matrix<double, n, N> rows = ws.gain(id).template topRows<n>() * dw;
-  add_block(jac, offset + n, offset_a, rows.leftCols(2 * na));
-  add_block(jac, offset + n, offset_b, rows.rightCols(N - 2 * na));
+  const Matrix<double, n, N> r = ws.gain(id).template topRows<n>() * dw;
+  add_block(jac, rows, offset_a, r.leftCols(na));
+  add_block(jac, rows, offset_b, r.rightCols(N - na));
 }
 
-/// One coupling's blocks: dW/d(y_a, y_b) in Jet<2 nq_a + 2 nq_b>, times the gains B_a and B_b.
+/// One coupling's blocks: dW/d(y_a, y_b) in Jet<na + nb> (the two bodies' blocks), times the
+/// gains B_a and B_b.
 template <class SceneT, class Load, class EntryA, class EntryB, class Y, class Jac>
 void coupling_block(SceneWorkspace<SceneT>& ws, const Load& load, const EntryA& ea,
                     const EntryB& eb, double t, const Y& y, std::span<const Matrix3<double>> base,
                     Jac& jac) {
   using BodyA = std::remove_cvref_t<decltype(ea.body)>;
   using BodyB = std::remove_cvref_t<decltype(eb.body)>;
-  constexpr int na = BodyA::nq, nb = BodyB::nq, N = 2 * na + 2 * nb;
+  constexpr int qa = BodyA::nq, qb = BodyB::nq;
+  constexpr int ra = EntryA::rate_size, rb = EntryB::rate_size;
+  constexpr int na = EntryA::block_size, N = na + EntryB::block_size;
   using J = Jet<N>;
   const RigidBody<typename BodyA::Param, BodyA::reference, J> ba(ea.body);
   const RigidBody<typename BodyB::Param, BodyB::reference, J> bb(eb.body);
@@ -143,18 +162,17 @@ void coupling_block(SceneWorkspace<SceneT>& ws, const Load& load, const EntryA& 
   BodyKinematics<J, BodyB::reference> kb;
   ka.mass_properties = &ba.mass_properties();
   kb.mass_properties = &bb.mass_properties();
-  body_kinematics<BodyA>(Vector<J, na>(seed<N>(y.template segment<na>(ea.offset), 0)),
-                         Vector<J, na>(seed<N>(y.template segment<na>(ea.offset + na), na)),
-                         base[ea.id], true, ka);
-  body_kinematics<BodyB>(
-      Vector<J, nb>(seed<N>(y.template segment<nb>(eb.offset), 2 * na)),
-      Vector<J, nb>(seed<N>(y.template segment<nb>(eb.offset + nb), 2 * na + nb)), base[eb.id],
-      true, kb);
+  body_kinematics<BodyA, EntryA::form>(Vector<J, qa>(seed<N>(y.template segment<qa>(ea.offset), 0)),
+                                       Vector<J, ra>(seed<N>(y.template segment<ra>(ea.rates), qa)),
+                                       base[ea.id], true, ka);
+  body_kinematics<BodyB, EntryB::form>(
+      Vector<J, qb>(seed<N>(y.template segment<qb>(eb.offset), na)),
+      Vector<J, rb>(seed<N>(y.template segment<rb>(eb.rates), na + qb)), base[eb.id], true, kb);
   Wrench<J> wa, wb;
   load.apply(J(t), static_cast<const KinematicsView<J>&>(ka),
              static_cast<const KinematicsView<J>&>(kb), wa, wb);
-  add_coupling_rows<na>(ws, ea.id, ea.offset, wa, ea.offset, eb.offset, na, jac);
-  add_coupling_rows<nb>(ws, eb.id, eb.offset, wb, ea.offset, eb.offset, na, jac);
+  add_coupling_rows<ra>(ws, ea.id, ea.rates, wa, ea.offset, eb.offset, na, jac);
+  add_coupling_rows<rb>(ws, eb.id, eb.rates, wb, ea.offset, eb.offset, na, jac);
 }
 
 /// The Jacobian of a scene into a sink (see jacobian() below).
@@ -172,17 +190,19 @@ void scene_jacobian(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t,
     });
   }
   scene.for_each_entry([&](const auto& e) {
-    using Body = std::remove_cvref_t<decltype(e.body)>;
-    constexpr int nq = Body::nq;
-    const Matrix<double, nq, nq> identity = Matrix<double, nq, nq>::Identity();
-    detail::add_block(jac, e.offset, e.offset + nq, identity);
+    using E = std::remove_cvref_t<decltype(e)>;
+    constexpr int nq = std::remove_cvref_t<decltype(e.body)>::nq, nb = E::block_size;
+    if constexpr (!E::quasi) {  // the rows of qdot: [0 I]
+      const Matrix<double, nq, nq> identity = Matrix<double, nq, nq>::Identity();
+      detail::add_block(jac, e.offset, e.rates, identity);
+    }
     if constexpr (SceneT::has_couplings) {
       if (scene.coupled(e.id)) {
-        detail::body_block_in<2 * nq + 6>(scene, ws, e, t, y, base[e.id], jac);
+        detail::body_block_in<nb + 6>(scene, ws, e, t, y, base[e.id], jac);
         return;
       }
     }
-    detail::body_block_in<2 * nq>(scene, ws, e, t, y, base[e.id], jac);
+    detail::body_block_in<nb>(scene, ws, e, t, y, base[e.id], jac);
   });
   if constexpr (SceneT::has_couplings) {
     scene.for_each_load([&](const auto& at) {

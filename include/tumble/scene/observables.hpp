@@ -24,10 +24,6 @@ template <class Entry> auto theta_of(const Entry& e, const SceneStateView& s) {
   using Body = std::remove_cvref_t<decltype(e.body)>;
   return typename Body::Theta(s.y.template segment<Body::n_theta>(e.offset + 3));
 }
-template <class Entry> auto thetadot_of(const Entry& e, const SceneStateView& s) {
-  using Body = std::remove_cvref_t<decltype(e.body)>;
-  return typename Body::Theta(s.y.template segment<Body::n_theta>(e.offset + Body::nq + 3));
-}
 /// R = R0 R(theta), Eq. (1.1) with the chart base.
 template <class Entry> Matrix3<double> rotation_of(const Entry& e, const SceneStateView& s) {
   using P = typename std::remove_cvref_t<decltype(e.body)>::Param;
@@ -38,16 +34,22 @@ template <class Entry> Matrix3<double> rotation_of(const Entry& e, const SceneSt
     return r;
   }
 }
-/// omega = G thetadot, Eq. (1.5): the same in every chart (R0 is constant).
+/// omega, body components: read from the state in the quasi-velocity form, else G thetadot
+/// (Eq. 1.5), the same in every chart (R0 is constant).
 template <class Entry> Vector3<double> omega_of(const Entry& e, const SceneStateView& s) {
-  using P = typename std::remove_cvref_t<decltype(e.body)>::Param;
-  return P::G(theta_of(e, s)) * thetadot_of(e, s);
+  using Body = std::remove_cvref_t<decltype(e.body)>;
+  if constexpr (Entry::quasi) {
+    return s.y.template segment<3>(e.rates + 3);
+  } else {
+    const typename Body::Theta thd = s.y.template segment<Body::n_theta>(e.rates + 3);
+    return Body::Param::G(theta_of(e, s)) * thd;
+  }
 }
 /// rdot of the centroid, Eq. (1.4) with r_cp = r_cg.
 template <class Entry>
 Vector3<double> centroid_velocity_of(const Entry& e, const SceneStateView& s) {
   using Body = std::remove_cvref_t<decltype(e.body)>;
-  const Vector3<double> v = s.y.template segment<3>(e.offset + Body::nq);
+  const Vector3<double> v = s.y.template segment<3>(e.rates);
   if constexpr (Body::at_centroid) {
     return v;
   } else {
@@ -57,11 +59,11 @@ Vector3<double> centroid_velocity_of(const Entry& e, const SceneStateView& s) {
 /// The full kinematics of body e (with R), as its loads see them.
 template <class Entry> auto kinematics_of(const Entry& e, const SceneStateView& s) {
   using Body = std::remove_cvref_t<decltype(e.body)>;
-  constexpr int nq = Body::nq;
   BodyKinematics<double, Body::reference> k;
   k.mass_properties = &e.body.mass_properties();
-  body_kinematics<Body>(s.y.template segment<nq>(e.offset), s.y.template segment<nq>(e.offset + nq),
-                        s.base[e.id], true, k);
+  body_kinematics<Body, Entry::form>(s.y.template segment<Body::nq>(e.offset),
+                                     s.y.template segment<Entry::rate_size>(e.rates), s.base[e.id],
+                                     true, k);
   return k;
 }
 }  // namespace detail
@@ -87,7 +89,7 @@ template <class SceneT, class Body>
 template <class SceneT, class Body>
 [[nodiscard]] Vector3<double> velocity(const SceneT& scene, BodyId<Body> b,
                                        const SceneStateView& s) {
-  return s.y.template segment<3>(scene.entry(b).offset + Body::nq);
+  return s.y.template segment<3>(scene.entry(b).rates);  // the rates start with v in both forms
 }
 /// r_og of body b's centroid, inertial, m.
 template <class SceneT, class Body>
@@ -103,9 +105,13 @@ template <class SceneT, class Body>
 void set_velocity(const SceneT& scene, BodyId<Body> b, SceneState& s, const Vector3<double>& v,
                   const Vector3<double>& omega_body) {
   const auto& e = scene.entry(b);
-  s.y.template segment<3>(e.offset + Body::nq) = v;
-  s.y.template segment<Body::n_theta>(e.offset + Body::nq + 3) =
-      Body::Param::thetadot(detail::theta_of(e, s), omega_body);
+  s.y.template segment<3>(e.rates) = v;
+  if constexpr (std::remove_cvref_t<decltype(e)>::quasi) {
+    s.y.template segment<3>(e.rates + 3) = omega_body;
+  } else {
+    s.y.template segment<Body::n_theta>(e.rates + 3) =
+        Body::Param::thetadot(detail::theta_of(e, s), omega_body);
+  }
 }
 
 /// Sum of the kinetic energies, J.
@@ -180,15 +186,20 @@ template <class SceneT>
   return h;
 }
 
-/// The largest violation of |p| = 1 and p.pdot = 0 over the Euler-parameter bodies.
+/// The largest violation of |p| = 1 and p.pdot = 0 over the Euler-parameter bodies (|p| = 1
+/// alone in the quasi-velocity form, where pdot is not in the state and p.pdot = 0 by
+/// construction).
 template <class SceneT>
 [[nodiscard]] double constraint_drift(const SceneT& scene, const SceneStateView& s) {
   double d = 0;
   scene.for_each_entry([&](const auto& e) {
     using Body = std::remove_cvref_t<decltype(e.body)>;
-    if constexpr (Body::Param::has_constraint) {
+    if constexpr (Body::Param::has_constraint && std::remove_cvref_t<decltype(e)>::quasi) {
       const Vector4<double> p = s.y.template segment<4>(e.offset + 3);
-      const Vector4<double> pd = s.y.template segment<4>(e.offset + Body::nq + 3);
+      d = std::max(d, std::abs(p.norm() - 1.0));
+    } else if constexpr (Body::Param::has_constraint) {
+      const Vector4<double> p = s.y.template segment<4>(e.offset + 3);
+      const Vector4<double> pd = s.y.template segment<4>(e.rates + 3);
       d = std::max({d, std::abs(p.norm() - 1.0), std::abs(p.dot(pd))});
     }
   });

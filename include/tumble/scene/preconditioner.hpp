@@ -1,10 +1,10 @@
 #pragma once
 // A block-Jacobi preconditioner for iterative linear solvers (CVODE's GMRES with BDF):
 // P = I - gamma J_D, where J_D is the block diagonal of J = df/dy (jacobian.hpp), one block
-// [q_k; qdot_k] per body: its own loads and the part of its couplings that acts on its own state
-// (a stiff spring between two bodies shows in both blocks). LU-factored per body, so setup and
-// solve cost linear in the number of bodies. It belongs to the integrator that uses it; sized once
-// for a scene, it then allocates nothing.
+// per body ([q_k; qdot_k], or [q_k; v_k; omega_k] in the quasi-velocity form): its own loads and
+// the part of its couplings that acts on its own state (a stiff spring between two bodies shows in
+// both blocks). LU-factored per body, so setup and solve cost linear in the number of bodies. It
+// belongs to the integrator that uses it; sized once for a scene, it then allocates nothing.
 
 #include <span>
 #include <stdexcept>
@@ -25,13 +25,14 @@ namespace tumble {
 
 template <class SceneT> class BlockPreconditioner;
 
-template <class... B, class... L> class BlockPreconditioner<Scene<Bodies<B...>, Loads<L...>>> {
-  using SceneT = Scene<Bodies<B...>, Loads<L...>>;
+template <class... B, class... L, StateForm Form>
+class BlockPreconditioner<Scene<Bodies<B...>, Loads<L...>, Form>> {
+  using SceneT = Scene<Bodies<B...>, Loads<L...>, Form>;
   static_assert(SceneT::differentiable, "the block preconditioner needs the exact Jacobian blocks");
 
   /// One block: J_kk and the LU factors of I - gamma J_kk.
   template <class Body> struct Block {
-    static constexpr int m = 2 * Body::nq;
+    static constexpr int m = SceneT::template Entry<Body>::block_size;
     Matrix<double, m, m> j = Matrix<double, m, m>::Zero();
     Eigen::PartialPivLU<Matrix<double, m, m>> lu;
     int offset = 0;
@@ -131,7 +132,7 @@ template <class... B, class... L> class BlockPreconditioner<Scene<Bodies<B...>, 
   std::vector<int> owner_;     ///< per state entry: its body
   std::vector<double*> data_;  ///< per body: its J_kk
   std::vector<int> start_;     ///< per body: its offset
-  std::vector<int> size_;      ///< per body: 2 nq
+  std::vector<int> size_;      ///< per body: its block size
 };
 
 }  // namespace tumble

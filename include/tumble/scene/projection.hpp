@@ -1,6 +1,8 @@
 #pragma once
 // The projection of a scene's state onto the constraint manifold of its Euler-parameter bodies,
-// |p| = 1 and p.pdot = 0 (what CVODE's projection with BDF applies after each step).
+// |p| = 1 and p.pdot = 0 (what CVODE's projection with BDF applies after each step). In the
+// quasi-velocity state form (state.hpp) the manifold is |p| = 1 alone: omega is free and
+// pdot = 1/2 L(p)^T omega is tangent by construction, so only p is normalized.
 
 #include <type_traits>
 
@@ -10,15 +12,25 @@
 namespace tumble {
 
 /// The correction `corr` that takes y onto the manifold: p -> p/|p| and pdot -> pdot - (p.pdot) p
-/// (the orthogonal projection); zero elsewhere. When `err` is not empty (the local error
-/// estimate) its component normal to the manifold is removed too, as CVODE's projection expects.
+/// (the orthogonal projection; p -> p/|p| alone in the quasi-velocity form); zero elsewhere. When
+/// `err` is not empty (the local error estimate) its component normal to the manifold is removed
+/// too, as CVODE's projection expects.
 template <class SceneT, class Y, class C, class E>
 void project(const SceneT& scene, const Y& y, C&& corr, E&& err) {
   corr.setZero();
   scene.for_each_entry([&](const auto& e) {
     using Body = std::remove_cvref_t<decltype(e.body)>;
-    if constexpr (Body::Param::has_constraint) {
-      const int ip = e.offset + 3, iv = e.offset + Body::nq + 3;
+    if constexpr (Body::Param::has_constraint && std::remove_cvref_t<decltype(e)>::quasi) {
+      const int ip = e.offset + 3;
+      const Vector4<double> p = y.template segment<4>(ip);
+      const Vector4<double> pn = p / p.norm();
+      corr.template segment<4>(ip) = pn - p;
+      if (err.size() > 0) {
+        const Vector4<double> ep = err.template segment<4>(ip);
+        err.template segment<4>(ip) = ep - pn.dot(ep) * pn;
+      }
+    } else if constexpr (Body::Param::has_constraint) {
+      const int ip = e.offset + 3, iv = e.rates + 3;
       const Vector4<double> p = y.template segment<4>(ip);
       const Vector4<double> pd = y.template segment<4>(iv);
       const Vector4<double> pn = p / p.norm();

@@ -1,10 +1,12 @@
 #pragma once
-// The right-hand side of a scene: y' = f(t, y) with y = [q; qdot] per body (state.hpp).
-//
-// Per body k: f_k = [qdot_k; qddot_k], where qddot_k solves M qddot = f_v + Q (reference chapter,
-// Eq. 1.32; Eq. 1.33 at the centroid) for the wrench W_k of its loads (rigid_body.hpp, which
-// goes from the wrench to the accelerations without forming Q when the body has no other use
-// for it). Three passes, each over concrete types: the kinematics of every body (R only where a
+// The right-hand side of a scene: y' = f(t, y), per body in the scene's state form (state.hpp):
+// - generalized, y_k = [q; qdot]: f_k = [qdot_k; qddot_k], where qddot_k solves
+//   M qddot = f_v + Q (reference chapter, Eq. 1.32; Eq. 1.33 at the centroid) for the wrench W_k
+//   of its loads (rigid_body.hpp, which goes from the wrench to the accelerations without forming
+//   Q when the body has no other use for it);
+// - quasi_velocities, y_k = [r_oc; theta; v; omega]: f_k = [v; G^{-1} omega; a_c; alpha], the
+//   same Newton-Euler rates without thetaddot (RigidBody::quasi_rates). Three passes, each over
+//   concrete types: the kinematics of every body (R only where a
 // load or the offset frame needs it, composed with the body's chart base R0 from the state), the
 // loads (one-body loads with the body's typed kinematics, couplings with both), then the
 // accelerations. Nothing is allocated: the scratch lives in the workspace.
@@ -30,11 +32,12 @@ void scene_kinematics(const SceneT& scene, SceneWorkspace<SceneT>& ws, const Y& 
                       std::span<const Matrix3<double>> base) {
   scene.for_each_entry([&](const auto& e) {
     using Body = std::remove_cvref_t<decltype(e.body)>;
-    constexpr int nq = Body::nq;
+    using E = std::remove_cvref_t<decltype(e)>;
     auto& k = ws.kinematics(e);
     k.mass_properties = &e.body.mass_properties();
-    body_kinematics<Body>(y.template segment<nq>(e.offset), y.template segment<nq>(e.offset + nq),
-                          base[e.id], e.needs_rotation, k);
+    body_kinematics<Body, E::form>(y.template segment<Body::nq>(e.offset),
+                                   y.template segment<E::rate_size>(e.rates), base[e.id],
+                                   e.needs_rotation, k);
     ws.wrench(e.id) = Wrench<double>{};
   });
 }
@@ -73,10 +76,15 @@ void rhs(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y& y,
     using Body = std::remove_cvref_t<decltype(e.body)>;
     constexpr int nq = Body::nq;
     const typename Body::Coords q = y.template segment<nq>(e.offset);
-    const typename Body::Coords qd = y.template segment<nq>(e.offset + nq);
-    ydot.template segment<nq>(e.offset) = qd;
-    ydot.template segment<nq>(e.offset + nq) = detail::body_accelerations(
-        e.body, q, qd, ws.kinematics(e), ws.wrench(e.id), ws.stabilize_constraints);
+    if constexpr (std::remove_cvref_t<decltype(e)>::quasi) {
+      ydot.template segment<Body::nx>(e.offset) = detail::body_quasi_rates(
+          e.body, q, ws.kinematics(e), ws.wrench(e.id), ws.stabilize_constraints);
+    } else {
+      const typename Body::Coords qd = y.template segment<nq>(e.rates);
+      ydot.template segment<nq>(e.offset) = qd;
+      ydot.template segment<nq>(e.rates) = detail::body_accelerations(
+          e.body, q, qd, ws.kinematics(e), ws.wrench(e.id), ws.stabilize_constraints);
+    }
   });
 }
 

@@ -12,10 +12,12 @@
 //   (charts.hpp), the projection onto the quaternion constraint (projection.hpp) and the
 //   observables (observables.hpp).
 //
-// Types are resolved at compile time: `Scene<Bodies<B...>, Loads<L...>>` lists the body types and
-// the load types the scene may hold, so that the algorithms loop over each body type and each
-// load type with the concrete type known (a centroidal body never computes coupling terms, a body
-// whose loads need no rotation matrix never forms R, ...).
+// Types are resolved at compile time: `Scene<Bodies<B...>, Loads<L...>, Form>` lists the body
+// types and the load types the scene may hold, and the layout of its state (StateForm, state.hpp:
+// [q; qdot] or [q; v; omega] per body; every algorithm dispatches on it with `if constexpr`), so
+// that the algorithms loop over each body type and each load type with the concrete type known (a
+// centroidal body never computes coupling terms, a body whose loads need no rotation matrix never
+// forms R, ...).
 
 #include <algorithm>
 #include <array>
@@ -89,12 +91,20 @@ concept DifferentiableLoad = requires(const L& l, const Jet<2>& t,
   l.apply(t, ka, kb, wa, wb);
 };
 
-/// One body of a scene, as the model keeps it.
-template <class Body> struct SceneEntry {
+/// One body of a scene, as the model keeps it, for a state of form Form.
+template <class Body, StateForm Form> struct SceneEntry {
+  static constexpr StateForm form = Form;
+  static constexpr bool quasi = Form == StateForm::quasi_velocities;
+  /// The length of the body's rates in y: qdot (nq), or [v; omega] (6).
+  static constexpr int rate_size = quasi ? 6 : Body::nq;
+  /// The length of the body's block in y: [q; qdot] (2 nq) or [q; v; omega] (nq + 6).
+  static constexpr int block_size = Body::nq + rate_size;
+
   Body body;
   int id;                                    ///< global index
   int local;                                 ///< index among the bodies of its type
-  int offset;                                ///< first entry of its [q; qdot] in y
+  int offset;                                ///< first entry of its block (q first) in y
+  int rates;                                 ///< first entry of its rates in y: offset + nq
   bool needs_rotation = !Body::at_centroid;  ///< some load (or the offset frame) reads R
   double switch_distance = Chart<typename Body::Param>::switch_distance();
 };
@@ -107,9 +117,10 @@ template <class Load> struct Attached {
 };
 }  // namespace detail
 
-template <class BodyList, class LoadList = Loads<>> class Scene;
+template <class BodyList, class LoadList = Loads<>, StateForm Form = StateForm::generalized>
+class Scene;
 
-template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
+template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Loads<L...>, Form> {
   static_assert(sizeof...(B) > 0, "a Scene needs at least one body type");
   static_assert((std::is_same_v<typename B::Scalar, double> && ...),
                 "bodies integrated in time use the scalar type double");
@@ -119,7 +130,9 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
                 "each load type must be a ForceElement (one body) or a CouplingElement (two)");
 
  public:
-  template <class Body> using Entry = detail::SceneEntry<Body>;
+  /// The layout of the state: [q; qdot] or [q; v; omega] per body (state.hpp).
+  static constexpr StateForm form = Form;
+  template <class Body> using Entry = detail::SceneEntry<Body, Form>;
   template <class Load> using Attached = detail::Attached<Load>;
   using LoadTypes = std::tuple<L...>;
   /// Per body type, the kinematics its loads read (the layout of a workspace).
@@ -148,7 +161,8 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
     auto& group = std::get<std::vector<Entry<Body>>>(groups_);
     const int id = body_count();
     const int local = static_cast<int>(group.size());
-    Entry<Body> e{std::move(body), id, local, size_};
+    constexpr int block = Entry<Body>::block_size;
+    Entry<Body> e{std::move(body), id, local, size_, size_ + nq};
     // The initial chart: theta of R itself, unless R is near the chart's singularity; then the
     // chart is centered there (R0 = R R(theta_c)^T, theta = theta_c).
     Matrix3<double> base = Matrix3<double>::Identity();
@@ -161,14 +175,18 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
       }
       chart_bodies_.push_back(id);
     }
-    y0_.y.conservativeResize(size_ + 2 * nq);
+    y0_.y.conservativeResize(size_ + block);
     y0_.y.template segment<3>(size_) = s.position;
     y0_.y.template segment<Body::n_theta>(size_ + 3) = theta;
     y0_.y.template segment<3>(size_ + nq) = s.velocity;
-    y0_.y.template segment<Body::n_theta>(size_ + nq + 3) = P::thetadot(theta, s.omega);
+    if constexpr (Entry<Body>::quasi) {
+      y0_.y.template segment<3>(size_ + nq + 3) = s.omega;
+    } else {
+      y0_.y.template segment<Body::n_theta>(size_ + nq + 3) = P::thetadot(theta, s.omega);
+    }
     y0_.base.push_back(base);
     group.push_back(std::move(e));
-    size_ += 2 * nq;
+    size_ += block;
     locations_.push_back({detail::index_of<Body, B...>(), local});
     for (auto& per_body : loads_on_) {
       per_body.emplace_back();
@@ -260,15 +278,12 @@ template <class... B, class... L> class Scene<Bodies<B...>, Loads<L...>> {
   [[nodiscard]] bool coupled(int id) const { return coupled_[id] != 0; }
 
   /// The half-bandwidth of the Jacobian df/dy in the scene's state ordering: a body's block
-  /// [q; qdot] is dense, and a coupling between bodies a and b links their two blocks. For a chain
-  /// of bodies added in order this stays constant as the chain grows, so CVODE's band solver
-  /// costs O(N) per Jacobian and per solve.
+  /// ([q; qdot] or [q; v; omega]) is dense, and a coupling between bodies a and b links their two
+  /// blocks. For a chain of bodies added in order this stays constant as the chain grows, so
+  /// CVODE's band solver costs O(N) per Jacobian and per solve.
   [[nodiscard]] int half_bandwidth() const {
     std::vector<std::pair<int, int>> block(locations_.size());  // [first, last] index per body
-    for_each_entry([&](const auto& e) {
-      using Body = std::remove_cvref_t<decltype(e.body)>;
-      block[e.id] = {e.offset, e.offset + 2 * Body::nq - 1};
-    });
+    for_each_entry([&](const auto& e) { block[e.id] = {e.offset, e.offset + e.block_size - 1}; });
     int bw = 0;
     for (const auto& [first, last] : block) {
       bw = std::max(bw, last - first);

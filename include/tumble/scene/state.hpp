@@ -3,7 +3,12 @@
 //
 // A scene (scene.hpp) is the model; a SceneState is one instant of it:
 // - `y`, the continuous state the integrators advance: for each body in the order it was added,
-//   [q; qdot] with q = [r_oc; theta] (reference chapter, Eq. 1.6);
+//   one block whose layout is the scene's StateForm (below), with q = [r_oc; theta] (reference
+//   chapter, Eq. 1.6) first in both forms:
+//     StateForm::generalized       [q; qdot]       = [r_oc (3); theta (n); rdot_oc (3); thetadot
+//     (n)] StateForm::quasi_velocities  [q; v; omega]   = [r_oc (3); theta (n); v (3); omega (3)]
+//   with v = rdot_oc (inertial components) and omega the body's angular velocity in body
+//   components (Eq. 1.5: omega = G thetadot). The rates start at offset + nq in both forms;
 // - `base`, the discrete state: the chart base R0 of every body, one per body in the same order,
 //   with the attitude R = R0 R(theta). A three-parameter body's base changes when its chart is
 //   re-centered before a singularity (chart.hpp, charts.hpp); it is the identity for Euler
@@ -19,6 +24,17 @@
 #include "tumble/core/types.hpp"
 
 namespace tumble {
+
+/// The layout of a scene's continuous state, chosen at compile time (Scene's third parameter).
+/// - generalized: per body [q; qdot], the reference chapter's form (Eq. 1.32 integrated as is);
+/// - quasi_velocities: per body [q; v; omega]: the rates of the Newton-Euler equations are
+///   integrated, and theta follows from the inverse kinematic map thetadot = G^{-1} omega. Attitude
+///   errors then do not feed back into omega, which makes it far more accurate per tolerance on a
+///   tumbling body, and neither thetaddot nor Gdot thetadot is computed.
+enum class StateForm {
+  generalized,      ///< [r_oc; theta; rdot_oc; thetadot] per body, size 2 nq
+  quasi_velocities  ///< [r_oc; theta; v; omega] per body, size nq + 6
+};
 
 /// The chart bases of a scene's bodies, one per body (body id order).
 using ChartBases = std::vector<Matrix3<double>>;

@@ -50,7 +50,8 @@ template <class SceneT> class SceneWorkspace {
   /// The same, untyped (what couplings read).
   [[nodiscard]] const KinematicsView<double>& view(int id) const { return *views_[id]; }
   [[nodiscard]] Wrench<double>& wrench(int id) { return wrench_[id]; }
-  /// B = d qddot / dW of a coupled body (rows beyond its nq unused).
+  /// B = d rates' / dW of a coupled body: d qddot / dW (nq rows), or d(a_c, alpha) / dW (6 rows)
+  /// in the quasi-velocity form; rows beyond those unused.
   [[nodiscard]] Matrix<double, 7, 6>& gain(int id) { return gain_[id]; }
 
   /// Euler parameters: the Baumgarte-stabilized constraint acceleration (Adams) when true, the

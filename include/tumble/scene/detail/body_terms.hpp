@@ -1,8 +1,8 @@
 #pragma once
-// The two per-body pieces that the scene's algorithms share, in any scalar type (double in the
+// The per-body pieces that the scene's algorithms share, in any scalar type (double in the
 // right-hand side and the observables, Jet<N> in the Jacobian): a body's kinematics from its
-// coordinates and its chart base, and its accelerations with the constraint stabilization of
-// Euler parameters.
+// coordinates, its rates and its chart base, and the rate of its block of the state with the
+// constraint stabilization of Euler parameters, for either state form (state.hpp).
 
 #include <cmath>
 
@@ -11,23 +11,29 @@
 #include "tumble/core/math.hpp"
 #include "tumble/core/types.hpp"
 #include "tumble/scene/chart.hpp"
+#include "tumble/scene/state.hpp"
 
 namespace tumble::detail {
 
-/// The kinematics loads read, Eqs. (1.1), (1.4)-(1.5): r_oc, rdot_oc, omega = G thetadot and,
-/// when with_rotation, R = R0 R(theta) with the chart base R0, from a body's coordinates q and
-/// rates qd. Forced inline: GCC 12 left it out of line in the right-hand side, which cost 35% of
-/// an offset Euler-parameter right-hand side (150 -> 202 ns; 151 ns inlined).
-template <class Body, class Q, class Qd, class S>
+/// The kinematics loads read, Eqs. (1.1), (1.4)-(1.5): r_oc, rdot_oc, omega and, when
+/// with_rotation, R = R0 R(theta) with the chart base R0, from a body's coordinates q and its
+/// rates in the state form Form: qd = qdot (omega = G thetadot, Eq. 1.5) or qd = [v; omega]
+/// (omega read as is, no G). Forced inline: GCC 12 left it out of line in the right-hand side,
+/// which cost 35% of an offset Euler-parameter right-hand side (150 -> 202 ns; 151 ns inlined).
+template <class Body, StateForm Form, class Q, class Qd, class S>
 [[gnu::always_inline]] inline void body_kinematics(const Q& q, const Qd& qd,
                                                    const Matrix3<double>& base, bool with_rotation,
                                                    BodyKinematics<S, Body::reference>& k) {
   using P = typename Body::Param;
   const typename P::template Coords<S> th = q.template tail<Body::n_theta>();
-  const typename P::template Coords<S> thd = qd.template tail<Body::n_theta>();
   k.position = q.template head<3>();
   k.velocity = qd.template head<3>();
-  k.omega = P::G(th) * thd;
+  if constexpr (Form == StateForm::quasi_velocities) {
+    k.omega = qd.template tail<3>();
+  } else {
+    const typename P::template Coords<S> thd = qd.template tail<Body::n_theta>();
+    k.omega = P::G(th) * thd;
+  }
   if (with_rotation) {
     k.rotation = P::rotation(th);
     if constexpr (Chart<P>::has_singularity) {  // Euler parameters never leave their chart
@@ -67,6 +73,44 @@ Vector<typename JBody::Scalar, JBody::nq> body_accelerations(
     }
   }
   return qdd;
+}
+
+/// The rate of body's quasi-velocity block x = [r_oc; theta; v; omega] (RigidBody::quasi_rates):
+/// [v; P::thetadot(theta, omega); a_c; alpha], for the wrench w and the kinematics k at x.
+///
+/// Euler parameters with `stabilize` (Adams, which cannot project): pdot = 1/2 L(p)^T omega is
+/// tangent to every sphere |p| = const (p.L(p)^T omega = 0 for any p), so |p| is kept in exact
+/// arithmetic only, and the integrator's local errors make it drift as a random walk. A
+/// first-order correction along p pulls it back:
+///   pdot += -(g/2) (|p|^2 - 1) p,   g = |omega|.
+/// Then with c = |p|^2 - 1, dc/dt = 2 p.pdot = -g |p|^2 c = -g (1 + c) c: the drift decays at the
+/// rate g near the manifold, the body's own angular rate, so the correction adds no time scale
+/// faster than the motion itself (no stiffness for Adams) and vanishes on the manifold (the
+/// physics is unchanged). A tumbling body has g > 0; at rest nothing moves and nothing drifts.
+/// With BDF the integrator projects instead (projection.hpp), and stabilize is false.
+template <class JBody>
+Vector<typename JBody::Scalar, JBody::nx> body_quasi_rates(const JBody& body,
+                                                           const typename JBody::Coords& q,
+                                                           const typename JBody::Kinematics& k,
+                                                           const Wrench<typename JBody::Scalar>& w,
+                                                           [[maybe_unused]] bool stabilize) {
+  using S = typename JBody::Scalar;
+  typename JBody::QuasiCoords xd = body.quasi_rates(q, k, w);
+  if constexpr (JBody::Param::has_constraint) {
+    if (stabilize) {
+      using std::sqrt;
+      const Vector4<S> p = q.template tail<4>();
+      const S g2 = k.omega.squaredNorm();
+      // g = |omega| is not differentiable at omega = 0, where its jet would be 0/0: take the
+      // one-sided derivative 0 there (the correction vanishes on the manifold anyway).
+      S g = S(0);
+      if (detail::value(g2) > 0) {
+        g = sqrt(g2);
+      }
+      xd.template segment<4>(3) -= (S(0.5) * g * (p.squaredNorm() - S(1))) * p;
+    }
+  }
+  return xd;
 }
 
 }  // namespace tumble::detail

@@ -1,0 +1,128 @@
+// Tests of RigidBody::velocity_rates and RigidBody::quasi_rates (include/tumble/body/
+// rigid_body.hpp): the rate of the quasi-velocity state x = [r_oc; theta; v; omega],
+// xdot = [v; thetadot(theta, omega); a_c; alpha], checked against the Newton-Euler equations
+// written in the test from the physical state and the forces themselves (m a_g = sum F,
+// I_g alpha + omega x I_g omega = M_g; a_g = a_c + R (alpha x r_g + omega x (omega x r_g))),
+// against omega = G thetadot (Eq. 1.5), against accelerations() (the same (a_c, alpha) through
+// Eq. 1.10, bit for bit), and for the error a non-finite omega raises. For Euler parameters,
+// an Euler-angle sequence, MRP and the rotation vector, at and off the centroid.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <tuple>
+
+#include <Eigen/Dense>
+
+#include "support/body_fixtures.hpp"
+#include "support/catch.hpp"
+#include "tumble/body/rigid_body.hpp"
+#include "tumble/core/errors.hpp"
+#include "tumble/force/loads.hpp"
+
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using tumble::ReferencePoint;
+
+constexpr double kTol = 256 * std::numeric_limits<double>::epsilon();
+
+using QuasiParameterizations =
+    std::tuple<tumble::EulerParameters, tumble::EulerZXZ, tumble::ModifiedRodriguesParameters,
+               tumble::RotationVector>;
+
+template <class P, ReferencePoint Ref> void check_quasi_rates() {
+  using Body = tumble::RigidBody<P, Ref>;
+  constexpr int n = P::size, nq = Body::nq;
+  tumble::test::Random rng(301);
+  int used = 0;
+  for (int b = 0; b < 3; ++b) {
+    const auto model = tumble::test::random_body(rng, Ref == ReferencePoint::offset);
+    const Body body(tumble::test::mass_properties(model));
+    const Matrix3d& ig = model.inertia_centroid;
+    const Vector3d& rg = model.centroid;
+    const double lambda_min = Eigen::SelfAdjointEigenSolver<Matrix3d>(ig).eigenvalues()(0);
+    for (int i = 0; i < 10; ++i) {
+      const auto ps = tumble::test::random_physical_state(rng);
+      const auto loads = tumble::test::random_loads(rng);
+      if (!tumble::test::usable<P>(ps)) {
+        continue;
+      }
+      ++used;
+      INFO(P::name << " " << tumble::test::ref_name(Ref) << " body " << b << " state " << i);
+      const auto s = tumble::test::make_state<P>(ps);
+      const tumble::Wrench<double> w = tumble::test::with_elements(loads, [&](const auto&... e) {
+        return tumble::total_wrench(body, 0.0, s.q, s.qdot, e...);
+      });
+      typename Body::QuasiCoords x;
+      x << s.q, ps.velocity, ps.omega;
+      const typename Body::QuasiCoords xd = body.quasi_rates(x, w);
+
+      // rdot = v; thetadot is the inverse of omega = G thetadot (Eq. 1.5).
+      CHECK(xd.template head<3>() == ps.velocity);
+      const typename Body::Theta thd = xd.template segment<n>(3);
+      CHECK((P::G(s.theta()) * thd - ps.omega).norm() < kTol * (1.0 + ps.omega.norm()));
+
+      // Newton-Euler in the test.
+      const Vector3d alpha = xd.template tail<3>();
+      const Vector3d a_c = xd.template segment<3>(nq);
+      const auto applied = tumble::test::applied_forces(model, ps, loads);
+      Vector3d force = Vector3d::Zero(), moment_g = applied.moment;
+      double f_scale = 0, m_scale = applied.moment.norm();
+      for (const auto& [rho, f] : applied.forces) {
+        force += f;
+        moment_g += (rho - rg).cross(ps.rotation.transpose() * f);
+        f_scale += f.norm();
+        m_scale += (rho - rg).norm() * f.norm();
+      }
+      const Vector3d gyro = ps.omega.cross(ig * ps.omega);
+      m_scale += gyro.norm();
+      const double alpha_scale = m_scale / lambda_min;
+      CHECK((ig * alpha + gyro - moment_g).norm() / (lambda_min * alpha_scale) < kTol);
+      const Vector3d a_g =
+          a_c + ps.rotation * (alpha.cross(rg) + ps.omega.cross(ps.omega.cross(rg)));
+      const double ag_scale =
+          f_scale / model.mass + alpha_scale * rg.norm() + ps.omega.squaredNorm() * rg.norm();
+      CHECK((a_g - force / model.mass).norm() / ag_scale < kTol);
+
+      // velocity_rates is the same pair; accelerations() maps it through Eq. (1.10).
+      const tumble::VelocityRates<double> vr = body.velocity_rates(s.theta(), ps.omega, w);
+      CHECK((vr.acceleration - a_c).norm() <= kTol * ag_scale);
+      CHECK((vr.alpha - alpha).norm() <= kTol * alpha_scale);
+      const typename Body::Coords qdd = body.accelerations(s.q, s.qdot, w);
+      const tumble::VelocityRates<double> vg = body.velocity_rates(s.theta(), s.omega, w);
+      CHECK(qdd.template head<3>() == vg.acceleration);  // the same computation, same omega
+      const Vector3d alpha_g =
+          P::G(s.theta()) * qdd.template tail<n>() + P::Gdot_thetadot(s.theta(), s.thetadot());
+      CHECK((alpha_g - vg.alpha).norm() < kTol * alpha_scale);
+    }
+  }
+  CHECK(used >= 20);
+}
+
+}  // namespace
+
+TEMPLATE_LIST_TEST_CASE("quasi_rates: the Newton-Euler rates of [r; theta; v; omega]",
+                        "[body][quasi]", QuasiParameterizations) {
+  check_quasi_rates<TestType, ReferencePoint::centroid>();
+  check_quasi_rates<TestType, ReferencePoint::offset>();
+}
+
+TEST_CASE("quasi_rates: a non-finite omega is reported as such", "[body][quasi]") {
+  using Body = tumble::RigidBody<tumble::ModifiedRodriguesParameters>;
+  const Body body(
+      tumble::MassProperties<double>::about_centroid(1.0, Vector3d(1.0, 2.0, 3.0).asDiagonal()));
+  Body::QuasiCoords x = Body::QuasiCoords::Zero();
+  x(6 + 3 + 1) = std::numeric_limits<double>::quiet_NaN();
+  try {
+    (void)body.quasi_rates(x, tumble::Wrench<double>{});
+    FAIL("no NonFiniteError");
+  } catch (const tumble::NonFiniteError& e) {
+    const std::string what = e.what();
+    INFO(what);
+    CHECK(what.find("quasi_rates") != std::string::npos);
+    CHECK(what.find("the velocities (v, omega) have a non-finite entry") != std::string::npos);
+  }
+}
