@@ -43,28 +43,7 @@ using Eigen::VectorXd;
 using tumble::test::mixed::build;
 using tumble::test::mixed::MixedScene;
 
-/// Column j of df/dy at y by Richardson-extrapolated central differences of tumble::rhs, with a
-/// bound on its error: the extrapolation's own estimate (tests/support/finite_difference.hpp,
-/// which assumes f in long double) plus the rounding of f in double, 3 eps |f| / h_min (the
-/// weights of the extrapolation sum to less than 3).
-template <class SceneT>
-std::pair<VectorXd, double> fd_column(const SceneT& scene, tumble::SceneWorkspace<SceneT>& ws,
-                                      double t, const tumble::SceneState& st, int j) {
-  double f_scale = 0;
-  const auto f = [&](long double h) {
-    VectorXd yh = st.y;
-    yh(j) += static_cast<double>(h);
-    VectorXd out(yh.size());
-    tumble::rhs(scene, ws, t, yh, std::span<const Matrix3d>(st.base), out);
-    f_scale = std::max(f_scale, out.cwiseAbs().maxCoeff());
-    return Eigen::Matrix<long double, Eigen::Dynamic, 1>(out.cast<long double>());
-  };
-  // Every coordinate and rate varies on a scale of order 1 here (rad, m, rad/s, m/s): h0 = 1/32,
-  // five levels, h_min = 1/512.
-  const auto fd = tumble::test::richardson_derivative(f, 1.0L / 32, 5);
-  const double rounding = 3 * std::numeric_limits<double>::epsilon() * f_scale * 512;
-  return {fd.value.template cast<double>(), static_cast<double>(fd.error) + rounding};
-}
+using tumble::test::mixed::fd_column;
 
 }  // namespace
 

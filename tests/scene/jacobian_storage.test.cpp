@@ -46,6 +46,7 @@ using tumble::MassProperties;
 using tumble::RigidBody;
 using tumble::Scene;
 using tumble::test::mixed::build;
+using tumble::test::mixed::fd_column;
 using tumble::test::mixed::MixedScene;
 using tumble::test::mixed::Swirl;
 

@@ -2,14 +2,20 @@
 // The mixed scenes of the Jacobian tests (tests/scene/jacobian*.test.cpp): five bodies of three
 // types (P framed off its centroid, P at its centroid, and a third parameterization), every load
 // type tumble has, and a user force and a user coupling written for any scalar, so that the
-// scene is differentiable. Random mass properties and states from a seeded generator.
+// scene is differentiable. Random mass properties and states from a seeded generator, and the
+// reference the tests hold the Jacobian to: a column of df/dy by extrapolated central differences
+// of tumble::rhs.
 
 #include <cmath>
+#include <limits>
+#include <span>
 #include <type_traits>
+#include <utility>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "support/finite_difference.hpp"
 #include "support/random.hpp"
 #include "tumble/body/rigid_body.hpp"
 #include "tumble/force/coupling.hpp"
@@ -19,12 +25,16 @@
 #include "tumble/force/user_force.hpp"
 #include "tumble/orientation/euler_parameters.hpp"
 #include "tumble/orientation/rotation_vector.hpp"
+#include "tumble/scene/rhs.hpp"
 #include "tumble/scene/scene.hpp"
+#include "tumble/scene/state.hpp"
+#include "tumble/scene/workspace.hpp"
 
 namespace tumble::test::mixed {
 
 using Eigen::Matrix3d;
 using Eigen::Vector3d;
+using Eigen::VectorXd;
 using tumble::Bodies;
 using tumble::InitialState;
 using tumble::Loads;
@@ -120,6 +130,29 @@ template <class P> void build(MixedScene<P>& scene, Random& rng) {
                  tumble::SpringDamperBetween(rng.vector(0.3), Vector3d::Zero(),
                                              {.stiffness = 10, .damping = 0.3}));
   scene.add_load(a, d, tumble::UserCoupling<Torsion>(Torsion{}));
+}
+
+/// Column j of df/dy at y by Richardson-extrapolated central differences of tumble::rhs, with a
+/// bound on its error: the extrapolation's own estimate (tests/support/finite_difference.hpp,
+/// which assumes f in long double) plus the rounding of f in double, 3 eps |f| / h_min (the
+/// weights of the extrapolation sum to less than 3).
+template <class SceneT>
+std::pair<VectorXd, double> fd_column(const SceneT& scene, tumble::SceneWorkspace<SceneT>& ws,
+                                      double t, const tumble::SceneState& st, int j) {
+  double f_scale = 0;
+  const auto f = [&](long double h) {
+    VectorXd yh = st.y;
+    yh(j) += static_cast<double>(h);
+    VectorXd out(yh.size());
+    tumble::rhs(scene, ws, t, yh, std::span<const Matrix3d>(st.base), out);
+    f_scale = std::max(f_scale, out.cwiseAbs().maxCoeff());
+    return Eigen::Matrix<long double, Eigen::Dynamic, 1>(out.cast<long double>());
+  };
+  // Every coordinate and rate varies on a scale of order 1 here (rad, m, rad/s, m/s): h0 = 1/32,
+  // five levels, h_min = 1/512.
+  const auto fd = richardson_derivative(f, 1.0L / 32, 5);
+  const double rounding = 3 * std::numeric_limits<double>::epsilon() * f_scale * 512;
+  return {fd.value.template cast<double>(), static_cast<double>(fd.error) + rounding};
 }
 
 }  // namespace tumble::test::mixed
