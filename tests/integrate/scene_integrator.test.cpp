@@ -37,14 +37,6 @@
 #include "tumble/scene/scene.hpp"
 #include "tumble/scene/state.hpp"
 
-#ifndef TUMBLE_CONTAINS
-#if TUMBLE_CATCH_V3
-#define TUMBLE_CONTAINS(text) Catch::Matchers::ContainsSubstring(text)
-#else
-#define TUMBLE_CONTAINS(text) Catch::Contains(text)
-#endif
-#endif
-
 namespace {
 
 using Eigen::Matrix3d;

@@ -39,14 +39,6 @@
 #include "tumble/scene/rhs.hpp"
 #include "tumble/scene/workspace.hpp"
 
-#ifndef TUMBLE_CONTAINS
-#if TUMBLE_CATCH_V3
-#define TUMBLE_CONTAINS(text) Catch::Matchers::ContainsSubstring(text)
-#else
-#define TUMBLE_CONTAINS(text) Catch::Contains(text)
-#endif
-#endif
-
 namespace {
 
 using Eigen::Matrix3d;

@@ -38,13 +38,6 @@
 #include "tumble/force/spring_damper.hpp"
 #include "tumble/force/user_force.hpp"
 
-// A "message contains" matcher for REQUIRE_THROWS_WITH in Catch2 v2 and v3.
-#if TUMBLE_CATCH_V3
-#define TUMBLE_CONTAINS(text) Catch::Matchers::ContainsSubstring(text)
-#else
-#define TUMBLE_CONTAINS(text) Catch::Contains(text)
-#endif
-
 namespace tumble::test {
 
 using Eigen::Matrix3d;

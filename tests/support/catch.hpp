@@ -9,3 +9,10 @@ using Catch::Approx;
 #else
 #include <catch2/catch.hpp>
 #endif
+
+/// A matcher for "the message contains text", spelled alike in Catch2 v2 and v3.
+#if TUMBLE_CATCH_V3
+#define TUMBLE_CONTAINS(text) Catch::Matchers::ContainsSubstring(text)
+#else
+#define TUMBLE_CONTAINS(text) Catch::Contains(text)
+#endif
