@@ -30,6 +30,7 @@ add_executable(tumble_bench
   work_precision_problems.cpp    # problems, exact references, error measures
   work_precision_tumble_a.cpp    # method: tumble, parameterizations of the default run
   work_precision_tumble_b.cpp    # method: tumble, the other Euler sequences (--full)
+  work_precision_tumble_c.cpp    # method: tumble, the quasi-velocity state form, CVODE
   work_precision_methods.cpp     # the list of methods (one entry each)
   work_precision_floors.cpp      # methods: hand-written [q; qdot] CVODE floor, fixed-step RK4
   work_precision_floors_sundials.cpp  # methods: hand-written [p; omega] in CVODE, ARKODE F78
@@ -63,6 +64,16 @@ if(NOT _tumble_arkode)
 endif()
 find_package(Boost 1.65 REQUIRED)  # Boost.Odeint, header-only (Debian: libboost-dev)
 target_link_libraries(tumble_bench PRIVATE ${_tumble_arkode} Boost::headers)
+# tumble's own explicit integrator (OdeintIntegrator) on tumble's scenes, when the library
+# provides it (tumble::odeint: Boost >= 1.74).
+if(TARGET tumble::odeint)
+  target_sources(tumble_bench PRIVATE
+    work_precision_tumble_d.cpp)  # method: tumble's scenes under OdeintIntegrator
+  target_link_libraries(tumble_bench PRIVATE tumble::odeint)
+  target_compile_definitions(tumble_bench PRIVATE TUMBLE_BENCH_HAVE_TUMBLE_ODEINT=1)
+else()
+  message(STATUS "tumble_bench: without tumble::odeint (OdeintIntegrator's runs are skipped)")
+endif()
 target_include_directories(tumble_bench PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
 
 string(TOUPPER "${CMAKE_BUILD_TYPE}" _tumble_wp_bt)

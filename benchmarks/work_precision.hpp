@@ -12,7 +12,9 @@
 //
 // Methods: one list (work_precision_methods.cpp), one entry per method, each a Method below:
 //  - tumble: a Scene of one RigidBody<P> integrated by SceneIntegrator (CVODE Adams or BDF), for
-//    every orientation parameterization P (work_precision_tumble.hpp);
+//    every orientation parameterization P (work_precision_tumble.hpp), in the state form
+//    [q; qdot] and, for a few P, [q; v; omega]; and the same scenes under OdeintIntegrator
+//    (Boost.Odeint's Fehlberg 7(8) and Dormand-Prince 5(4), work_precision_tumble_d.cpp);
 //  - floors, every one on a right-hand side written by hand: the Euler-parameter [q; qdot] closed
 //    form in tumble's CVODE setup (work_precision_floors.cpp), and the first-order [p; omega]
 //    form (7 states; 13 with translation and loads, work_precision_floor_rhs.hpp) under CVODE,
@@ -272,6 +274,9 @@ struct Method {
   std::string parameterization = "EulerParameters";  ///< of the state it integrates (CSV)
   std::vector<Scheme> schemes;                       ///< one curve per scheme
   bool quick = true;  ///< in the default (quick) sweep; every method is in --full
+  /// The quick run's tolerance ladder of this method takes every quick_stride-th tolerance of
+  /// the problem's (1: all of them), for methods whose runs are slow; --full runs every one.
+  int quick_stride = 1;
   /// Whether it can run problem p (nullptr: every problem).
   bool (*applies)(const Problem&) = nullptr;
   MethodRunner run = nullptr;
@@ -282,6 +287,11 @@ struct Method {
 std::vector<Method> all_methods();
 void add_tumble_methods_a(std::vector<Method>& list);
 void add_tumble_methods_b(std::vector<Method>& list);
+/// tumble on [q; v; omega] (StateForm::quasi_velocities) with CVODE (work_precision_tumble_c.cpp)
+void add_tumble_methods_c(std::vector<Method>& list);
+/// tumble's scenes under Boost.Odeint (OdeintIntegrator, work_precision_tumble_d.cpp; built when
+/// the target tumble::odeint exists, TUMBLE_BENCH_HAVE_TUMBLE_ODEINT)
+void add_tumble_methods_d(std::vector<Method>& list);
 
 /// The hand-written Euler-parameter [q; qdot] right-hand side (14 states, tumble's state form)
 /// in a plain tumble::Cvode with tumble's settings and constraint handling.

@@ -3,8 +3,8 @@
 // plot's grouping), the schemes it is run with (one curve each), whether the quick run has it,
 // the problems it applies to, and the function that runs it. To add a configuration of tumble (a
 // state form of the scene, another integrator on a tumble scene), add one entry here (or in
-// add_tumble_methods_a/b for tumble's parameterizations); the sweep, the report, the CSV and the
-// plots take it from this list.
+// add_tumble_methods_a/b/c/d: tumble's parameterizations, state forms and integrators); the
+// sweep, the report, the CSV and the plots take it from this list.
 
 #include <vector>
 
@@ -17,6 +17,12 @@ std::vector<Method> all_methods() {
   // tumble on [q; qdot], CVODE Adams and BDF, one entry per parameterization
   add_tumble_methods_a(list);
   add_tumble_methods_b(list);
+  // tumble on [q; v; omega] (the quasi-velocity state form), CVODE Adams and BDF
+  add_tumble_methods_c(list);
+#ifdef TUMBLE_BENCH_HAVE_TUMBLE_ODEINT
+  // tumble's scenes under OdeintIntegrator: Fehlberg 7(8), Dormand-Prince 5(4), both state forms
+  add_tumble_methods_d(list);
+#endif
 
   // The floors: the same problems written by hand. The first one integrates tumble's own state
   // form (the cost of tumble's scene above CVODE); the others the first-order [p; omega] form.

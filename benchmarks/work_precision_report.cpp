@@ -131,11 +131,17 @@ std::optional<TimeAt> time_at(std::vector<Point> points, double target) {
 
 /// The row label of a method, without its scheme: tumble's rows are named by parameterization.
 std::string method_label(const Job& j) {
+  // the long names of the Rodrigues sets, shortened (the quasi form's label adds " quasi")
+  const std::pair<std::string, std::string> shorter[] = {
+      {"ModifiedRodriguesParameters", "ModifiedRodrigues"},
+      {"RodriguesParameters", "Rodrigues (Gibbs)"}};
   const std::string& l = j.method_entry->label;
-  if (l == "ModifiedRodriguesParameters") {
-    return "ModifiedRodrigues";
+  for (const auto& [from, to] : shorter) {
+    if (l.starts_with(from)) {
+      return to + l.substr(from.size());
+    }
   }
-  return l == "RodriguesParameters" ? std::string("Rodrigues (Gibbs)") : l;
+  return l;
 }
 
 const std::vector<double> kErrors = {1e-3, 1e-6, 1e-9, 1e-11};

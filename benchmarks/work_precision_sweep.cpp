@@ -64,14 +64,14 @@ std::vector<Job> plan_jobs(const Options& o, const std::vector<Problem>& problem
   const std::vector<double>& tolerances = o.tolerances.empty() ? kTolerances : o.tolerances;
   std::vector<Job> jobs;
   for (const Problem& p : problems) {
-    std::vector<double> ladder;
-    const int stride = o.full || !o.tolerances.empty() ? 1 : p.quick_stride;
-    for (std::size_t k = 0; k < tolerances.size(); k += static_cast<std::size_t>(stride)) {
-      ladder.push_back(tolerances[k]);
-    }
     for (const Method& m : methods) {
       if (m.applies != nullptr && !m.applies(p)) {
         continue;
+      }
+      std::vector<double> ladder;
+      const int stride = o.full || !o.tolerances.empty() ? 1 : p.quick_stride * m.quick_stride;
+      for (std::size_t k = 0; k < tolerances.size(); k += static_cast<std::size_t>(stride)) {
+        ladder.push_back(tolerances[k]);
       }
       for (Scheme s : m.schemes) {
         if (s == Scheme::rk4) {

@@ -1,15 +1,13 @@
 #pragma once
 // tumble_bench: one problem integrated by tumble itself, a Scene of one RigidBody<P> with
-// SceneIntegrator, for any orientation parameterization P. Instantiated for the sixteen
-// parameterizations in work_precision_tumble_a.cpp and work_precision_tumble_b.cpp (two
-// translation units so that a two-core build compiles them side by side).
-//
-// The scene is what a user would write for each problem: a body framed at its centroid
-// (ReferencePoint::centroid) with no loads for the torque-free problems; framed at a point off
-// its centroid (ReferencePoint::offset) with UniformGravity for the thrown body; and with
-// UniformGravity and a SpringDamper from its reference point (the tip) to the inertial origin for
-// the stiff top. Euler parameters are projected onto |p| = 1 after every BDF step and stabilized
-// (Baumgarte) with Adams; three-parameter sets re-center their charts (SceneIntegrator).
+// SceneIntegrator (CVODE Adams or BDF), for any orientation parameterization P and either state
+// form: [q; qdot] (StateForm::generalized), instantiated for the sixteen parameterizations in
+// work_precision_tumble_a.cpp and work_precision_tumble_b.cpp, and [q; v; omega]
+// (StateForm::quasi_velocities) in work_precision_tumble_c.cpp (separate translation units so
+// that a two-core build compiles them side by side). The scenes: work_precision_tumble_scene.hpp.
+// Euler parameters are projected onto |p| = 1 after every BDF step and stabilized (Baumgarte, or
+// the drift correction of the quasi form) with Adams; three-parameter sets re-center their charts
+// (SceneIntegrator).
 
 #include <algorithm>
 #include <exception>
@@ -18,6 +16,7 @@
 
 #include "tumble/cvode.hpp"
 #include "work_precision.hpp"
+#include "work_precision_tumble_scene.hpp"
 
 namespace tumble::bench {
 
@@ -29,15 +28,6 @@ inline SceneIntegratorOptions scene_options(const MethodSetting& c) {
   o.cvode.use_system_jacobian = c.exact_jacobian;
   o.cvode.fused_vector_operations = c.fused;
   return o;
-}
-
-inline InitialState initial_state(const Problem& p) {
-  return {.position = p.position0, .rotation = p.r0, .velocity = p.velocity0, .omega = p.omega0};
-}
-
-inline MassProperties<> mass_properties(const Problem& p) {
-  return MassProperties<>::about_centroid(p.mass, Eigen::Matrix3d(p.inertia.asDiagonal()),
-                                          p.centroid);
 }
 
 /// Times `reps` runs of: construct the SceneIntegrator, integrate over the output times and
@@ -56,11 +46,7 @@ Run run_scene(const Problem& p, const MethodSetting& c, const Timing& timing, Bu
       SceneIntegrator integrator(scene, 0.0, scene_options(c));
       std::size_t k = 0;
       integrator.integrate(p.times, [&](double, const SceneState& y) {
-        Sample& s = run.samples[k++];
-        s.rotation = tumble::rotation(scene, id, y);
-        s.omega = tumble::omega(scene, id, y);
-        s.position = tumble::position(scene, id, y);
-        s.velocity = tumble::velocity(scene, id, y);
+        run.samples[k++] = scene_sample(scene, id, y);
       });
       record_time(run, times, watch, timing);
       const SceneStatistics st = integrator.statistics();
@@ -78,55 +64,25 @@ Run run_scene(const Problem& p, const MethodSetting& c, const Timing& timing, Bu
   return run;
 }
 
-/// tumble on problem `p` with parameterization P.
-template <class P> Run run_tumble(const Problem& p, const MethodSetting& c, const Timing& timing) {
-  switch (p.kind) {
-    case ProblemKind::tumbling:
-    case ProblemKind::minor_axis:
-    case ProblemKind::major_axis:
-    case ProblemKind::spinner: {
-      using Body = RigidBody<P>;
-      return run_scene<Scene<Bodies<Body>>, Body>(p, c, timing, [&](auto& scene) {
-        return scene.add(Body(mass_properties(p)), initial_state(p));
-      });
-    }
-    case ProblemKind::gravity_offset: {
-      using Body = RigidBody<P, ReferencePoint::offset>;
-      using SceneT = Scene<Bodies<Body>, Loads<UniformGravity>>;
-      return run_scene<SceneT, Body>(p, c, timing, [&](auto& scene) {
-        const auto id = scene.add(Body(mass_properties(p)), initial_state(p));
-        scene.add_load(id, UniformGravity(p.gravity));
-        return id;
-      });
-    }
-    case ProblemKind::stiff_top: {
-      using Body = RigidBody<P, ReferencePoint::offset>;
-      using SceneT = Scene<Bodies<Body>, Loads<UniformGravity, SpringDamper>>;
-      return run_scene<SceneT, Body>(p, c, timing, [&](auto& scene) {
-        const auto id = scene.add(Body(mass_properties(p)), initial_state(p));
-        scene.add_load(id, UniformGravity(p.gravity));
-        scene.add_load(
-            id, SpringDamper(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-                             {.stiffness = p.stiffness, .damping = p.damping, .rest_length = 0.0}));
-        return id;
-      });
-    }
-  }
-  Run failed;
-  failed.ok = false;
-  failed.error = "unknown problem";
-  return failed;
+/// tumble on problem `p` with parameterization P, state form Form, CVODE.
+template <class P, StateForm Form = StateForm::generalized>
+Run run_tumble(const Problem& p, const MethodSetting& c, const Timing& timing) {
+  return visit_problem_scene<P, Form>(p, [&]<class SceneT, class Body>(auto build) {
+    return run_scene<SceneT, Body>(p, c, timing, build);
+  });
 }
 
-/// The method entry of tumble with parameterization P on [q; qdot], CVODE Adams and BDF.
-template <class P> Method tumble_method(bool quick) {
-  return {.label = std::string(P::name),
+/// The method entry of tumble with parameterization P on [q; qdot] (label: P's name) or on
+/// [q; v; omega] (label: P's name and "quasi"), CVODE Adams and BDF.
+template <class P, StateForm Form = StateForm::generalized> Method tumble_method(bool quick) {
+  const std::string suffix = Form == StateForm::quasi_velocities ? " quasi" : "";
+  return {.label = std::string(P::name) + suffix,
           .family = "tumble",
           .parameterization = std::string(P::name),
           .schemes = {Scheme::adams, Scheme::bdf},
           .quick = quick,
           .applies = nullptr,
-          .run = &run_tumble<P>};
+          .run = &run_tumble<P, Form>};
 }
 
 }  // namespace tumble::bench
