@@ -1,7 +1,7 @@
 // libFuzzer target: mass properties and rigid bodies from arbitrary bytes.
 // Input: a mode byte (about the centroid or the reference point), the mass, 9 inertia entries,
-// the centroid, then a state (position, quaternion, velocity, omega) and a wrench. Property
-// (issue 5): construction either works, with finite mass properties (inverse included), or
+// the centroid, then a state (position, quaternion, velocity, omega) and a wrench. Property:
+// construction either works, with finite mass properties (inverse included), or
 // throws std::invalid_argument; the accelerations of a constructed body at a finite state are
 // finite or throw tumble::NonFiniteError. Never a crash, a hang or a silent NaN.
 

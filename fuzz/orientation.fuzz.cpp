@@ -1,6 +1,6 @@
 // libFuzzer target: the orientation parameterizations' conversions from arbitrary bytes.
 // Input: one byte picks the source and target sets (16 each), then the source coordinates and an
-// angular velocity. Property (issue 5): on finite coordinates every step either works with
+// angular velocity. Property: on finite coordinates every step either works with
 // finite results or throws std::invalid_argument / std::domain_error (NonFiniteError), and a
 // result that works is correct: R orthonormal, the converted coordinates give the same R, and
 // G(theta) thetadot(theta, omega) = omega away from the singular attitudes. Non-finite
