@@ -95,8 +95,8 @@ OdeintOptions options(OdeintMethod method, double tol) {
 
 // ---- the tumbling body --------------------------------------------------------------------------
 
-const Vector3d kInertia(1.0, 2.0, 3.0);
-const Vector3d kOmega(0.1, 2.0, 0.05);
+const Vector3d& kInertia = tumble::test::kTumblingInertia;
+const Vector3d& kOmega = tumble::test::kTumblingOmega;
 const Matrix3d kR0 = rot(0.5, Vector3d(1, -1, 2));
 
 const TorqueFreeBody& reference() {
@@ -114,8 +114,7 @@ struct TumbleRun {
 template <class P> TumbleRun run_tumbling(OdeintMethod method, double tol) {
   using Body = RigidBody<P>;
   Scene<Bodies<Body>> scene;
-  const auto b = scene.add(Body(MassProperties<double>::about_centroid(1.0, kInertia.asDiagonal())),
-                           {.rotation = kR0, .omega = kOmega});
+  const auto b = scene.add(Body(tumble::test::tumbling_mass()), {.rotation = kR0, .omega = kOmega});
   OdeintIntegrator<Scene<Bodies<Body>>, 2 * (3 + P::size)> integrator(scene, 0.0,
                                                                       options(method, tol));
   std::vector<double> times;
@@ -182,7 +181,7 @@ struct Falling {
 
   Falling() {
     hits.reserve(16);
-    ball = scene.add(Ball(MassProperties<double>::about_centroid(1.0, kInertia.asDiagonal())),
+    ball = scene.add(Ball(tumble::test::tumbling_mass()),
                      {.position = {0, 0, kDropHeight}, .omega = {0.3, -0.2, 0.1}});
     scene.add_load(ball, tumble::UniformGravity(Vector3d(0, 0, -kG)));
     // z = 0, falling; the action reverses the vertical velocity (an elastic bounce).
@@ -406,8 +405,7 @@ TEST_CASE("explicit integrator: no heap allocation per step", "[integrate][expli
   {
     using Body = RigidBody<tumble::EulerZYX>;
     Scene<Bodies<Body>> scene;
-    scene.add(Body(MassProperties<double>::about_centroid(1.0, kInertia.asDiagonal())),
-              {.rotation = kR0, .omega = kOmega});
+    scene.add(Body(tumble::test::tumbling_mass()), {.rotation = kR0, .omega = kOmega});
     for (const OdeintMethod method :
          {OdeintMethod::fehlberg78, OdeintMethod::dopri5, OdeintMethod::cash_karp54}) {
       OdeintIntegrator<Scene<Bodies<Body>>, 12> integrator(scene, 0.0, options(method, 1e-10));
@@ -443,8 +441,7 @@ TEST_CASE("explicit integrator: bad input", "[integrate][explicit_integrator]") 
   using Body = RigidBody<tumble::EulerZYX>;
   using SceneT = Scene<Bodies<Body>>;
   SceneT scene;
-  const auto b = scene.add(Body(MassProperties<double>::about_centroid(1.0, kInertia.asDiagonal())),
-                           {.rotation = kR0, .omega = kOmega});
+  const auto b = scene.add(Body(tumble::test::tumbling_mass()), {.rotation = kR0, .omega = kOmega});
   const auto throws_with = [](auto&& f, const std::string& part) {
     try {
       f();
