@@ -214,6 +214,25 @@ TEMPLATE_TEST_CASE("Gibbs near the 180 degree singularity", "[orientation][rodri
   CHECK_THROWS_AS(P::from_rotation(flip), tumble::NonFiniteError);
 }
 
+TEST_CASE("Gibbs vector whose squared norm overflows is refused", "[orientation][rodrigues]") {
+  // Found by fuzz/orientation.fuzz.cpp: e0 = 8.8e-156 gives a finite g with |g| = 1.1e155, but
+  // g.g = 1.3e310 overflows and R = I + 2 / (1 + g.g) (...) evaluates 0 * inf = NaN. Such a
+  // rotation lies within 1e-155 rad of 180 degrees: it is refused like the half turn itself.
+  const Eigen::Quaterniond q(8.8144233770370566e-156, 0.99999999999999933, 4.0097670121626394e-08,
+                             0);
+  CHECK_THROWS_AS(P::from_quaternion(q), tumble::NonFiniteError);
+  const Eigen::Vector4d p(q.w(), q.x(), q.y(), q.z());
+  CHECK_THROWS_AS((tumble::convert<P, tumble::EulerParameters>(p)), tumble::NonFiniteError);
+  // Just inside the representable range (|g| = 1e150, g.g = 1e300) the rotation is still exact:
+  // the half turn about x, to rounding.
+  const Eigen::Quaterniond near(1e-150, 1, 0, 0);
+  const Eigen::Vector3d g = P::from_quaternion(near);
+  const Eigen::Matrix3d r = P::rotation(g);
+  CHECK(r.allFinite());
+  CHECK((r - Eigen::Vector3d(1, -1, -1).asDiagonal().toDenseMatrix()).cwiseAbs().maxCoeff() <
+        4e-16);
+}
+
 TEST_CASE("Gibbs distance to the singularity is continuous and monotone",
           "[orientation][rodrigues]") {
   // pi - phi for phi = 2 atan|g|, switching formulas at |g| = 1.

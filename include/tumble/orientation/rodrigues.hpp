@@ -104,7 +104,7 @@ struct RodriguesParameters {
   /// g = e / e0. The ratio does not depend on the sign or the norm of q, so q need not be
   /// normalized.
   /// \throws NonFiniteError when e0 == 0 (a rotation by exactly 180 degrees, or q = 0), or when
-  ///         g overflows (e0 tiny or q huge).
+  ///         g or g.g overflows (e0 tiny or q huge).
   template <class S> [[nodiscard]] static Coords<S> from_quaternion(const Eigen::Quaternion<S>& q) {
     if (detail::value(q.w()) == 0) {
       throw NonFiniteError(
@@ -113,10 +113,12 @@ struct RodriguesParameters {
     }
     const S f = S(1) / q.w();
     const Coords<S> g(f * q.x(), f * q.y(), f * q.z());
-    if (!detail::all_finite(g)) {  // e0 so small (or q so large) that e / e0 overflows
+    // g.g is what rotation(), G() and thetadot() use: a g that is finite while g.g overflows
+    // (|g| > ~1e154, a rotation within ~1e-154 rad of 180 degrees) would give them inf * 0.
+    if (!detail::isfinite(g.squaredNorm())) {  // e0 so small (or q so large) that g overflows
       throw NonFiniteError(
           "RodriguesParameters: the rotation is so close to 180 degrees (or the quaternion so "
-          "large) that its Gibbs vector n tan(phi/2) overflows");
+          "large) that its Gibbs vector n tan(phi/2), or its squared norm, overflows");
     }
     return g;
   }
