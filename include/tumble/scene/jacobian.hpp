@@ -135,7 +135,7 @@ void body_block_in(const SceneT& scene, SceneWorkspace<SceneT>& ws, const Entry&
 template <int n, class SceneT, class J, class Jac>
 void add_coupling_rows(SceneWorkspace<SceneT>& ws, int id, int rows, const Wrench<J>& w,
                        int offset_a, int offset_b, int na, Jac& jac) {
-  constexpr int N = J::DerType::RowsAtCompileTime;
+  constexpr int N = J::directions;
   Matrix<double, 6, N> dw;
   dw.template topRows<3>() = derivatives(w.force);
   dw.template bottomRows<3>() = derivatives(w.moment);
