@@ -53,6 +53,12 @@ macro(tumble_find_sundials out_var)
     endforeach()
     set(${out_var} ${_tumble_ok})
   endif()
+  if(NOT ${out_var} AND SUNDIALS_CONFIG AND DEFINED SUNDIALS_NOT_FOUND_MESSAGE)
+    # A config file that refused (e.g. Debian 13's SUNDIALS looks up OpenMP, which Clang finds
+    # only with libomp-dev): say why, since the libraries found below lack its MPI/OpenMP flags.
+    message(WARNING "tumble: ${SUNDIALS_CONFIG} was found but refused: "
+                    "${SUNDIALS_NOT_FOUND_MESSAGE} Looking for the libraries by name instead.")
+  endif()
   if(NOT ${out_var})
     set(TUMBLE_SUNDIALS_TARGETS "")
     find_path(TUMBLE_CVODE_INCLUDE_DIR cvode/cvode.h)

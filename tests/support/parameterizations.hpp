@@ -55,14 +55,14 @@ using AllParameterizations = std::tuple<EulerParameters
                                         >;
 
 /// The parameterizations the integration suites (tests/integrate, tests/scene) run their scene
-/// types over. All of them by default. Compiled with TUMBLE_TEST_REPRESENTATIVE=1 (CMake:
+/// types over. Compiled with TUMBLE_TEST_REPRESENTATIVE=1 (CMake's default,
 /// -DTUMBLE_TEST_INTEGRATION_SET=representative), one of each family, so that every code path of
 /// the scene and the integrator is still taken: Euler parameters (the constraint, projection and
 /// stabilization), a Tait-Bryan and a proper Euler sequence (singular at +-pi/2 and at 0, pi: both
 /// kinds of chart re-centering), Gibbs, the rotation vector (re-centering of vector charts) and
-/// MRP (the shadow set). The 12 Euler sequences share one implementation, which the orientation
-/// and body suites test one by one whatever this set. CI's compat and sanitizer stages use it to
-/// stay within their time; its GCC stage runs the whole list.
+/// MRP (the shadow set). The 12 Euler sequences share one implementation, which the orientation,
+/// body and chart suites test one by one whatever this set. With
+/// -DTUMBLE_TEST_INTEGRATION_SET=all, all 16.
 #if defined(TUMBLE_TEST_REPRESENTATIVE) && TUMBLE_TEST_REPRESENTATIVE
 using IntegrationParameterizations = std::tuple<EulerParameters
 #ifdef TUMBLE_TEST_HAVE_EULER_ANGLES
