@@ -1,0 +1,101 @@
+#pragma once
+// Ensemble: many runs of one scene, across cores. The scene is the model, shared read-only by
+// every run; each run has its own initial state and its own result, kept per run:
+//
+//   auto make = [](const Scene& s, double t0, const SceneState& y0) {
+//     return OdeintIntegrator<Scene, 13>(s, t0, y0, options);    // or SceneIntegrator (CVODE)
+//   };
+//   Ensemble ensemble(scene, make, {.threads = 2});
+//   std::vector<RunOutcome<double>> r = ensemble.integrate<double>(
+//       n, [&](std::size_t i) { return dispersed_state(i); }, 0.0, times,
+//       [](double& err, std::size_t i, double t, const SceneState& s) { err = ...; });
+//
+// - Any integrator of the library (EnsembleIntegrator, detail/run.hpp), made by the user's
+//   factory make(scene, t0, s0): its options, its method, its size template argument stay the
+//   user's. Each thread makes one on its first run and reset()s it for the next, so a run costs
+//   no construction (no CVODE memory, no Odeint buffers) and allocates only what reset() does;
+//   after a failed run the thread's integrator is dropped and made anew.
+// - The observer is called at each output time with the run's result R (value-initialized at
+//   the run's start), the run's index, the time, the state and, if it takes a fifth argument,
+//   the scene (for the observables, scene/observables.hpp); what it keeps in R is all that is
+//   kept of a run, so memory grows with the results, not with the steps or the states.
+// - Results do not depend on the thread count, to the bit: a run's result depends only on the
+//   scene, its initial state, the factory and the times (reset() leaves nothing of an earlier
+//   run), each run writes only its own slot, and fold_runs (outcome.hpp) combines them in run
+//   order.
+// - A run that throws (the integrator, a load, an event, initial(i) or the observer) gets a
+//   RunError with its index and message; the other runs go on and keep their results.
+// The observer and initial(i) are called concurrently from several threads: they must only read
+// shared data. Per-run scenes (dispersed inertia, loads): variants.hpp.
+
+#include <cstddef>
+#include <optional>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "tumble/ensemble/detail/run.hpp"
+#include "tumble/ensemble/options.hpp"
+#include "tumble/ensemble/outcome.hpp"
+#include "tumble/ensemble/parallel.hpp"
+#include "tumble/scene/state.hpp"
+
+namespace tumble {
+
+/// One scene, many runs. MakeIntegrator: make(const SceneT&, double t0, const SceneState& s0)
+/// returns an integrator of the scene starting at (t0, s0).
+template <class SceneT, class MakeIntegrator> class Ensemble {
+ public:
+  using Integrator = std::remove_cvref_t<
+      std::invoke_result_t<const MakeIntegrator&, const SceneT&, double, const SceneState&>>;
+  static_assert(EnsembleIntegrator<Integrator>,
+                "the factory must return an integrator with advance(t) and reset(t, state)");
+
+  /// The scene must outlive the ensemble; it is only read.
+  Ensemble(const SceneT& scene, MakeIntegrator make, EnsembleOptions options = {})
+      : scene_(&scene), make_(std::move(make)), options_(options) {
+    validate(options_);
+  }
+  Ensemble(SceneT&&, MakeIntegrator, EnsembleOptions = {}) = delete;
+
+  /// Runs 0, ..., runs-1, run i from (t0, initial(i)) to each of `times` (finite, non-decreasing,
+  /// not before t0), calling observe(R& result, std::size_t run, double t, const SceneState&
+  /// [, const SceneT&]) at each. initial(i) returns the run's SceneState (a copy or a reference),
+  /// e.g. the scene's initial state with dispersed rates. \returns one RunOutcome per run, in run
+  /// order: its R, or its RunError. \throws std::invalid_argument for bad output times (before any
+  /// run).
+  template <class R, class Initial, class Times, class Observer>
+  std::vector<RunOutcome<R>> integrate(std::size_t runs, Initial&& initial, double t0,
+                                       const Times& times, Observer&& observe) const {
+    detail::check_output_times(t0, times);
+    std::vector<RunOutcome<R>> out(runs);
+    for_each_run<std::optional<Integrator>>(
+        runs, options_, [&](std::optional<Integrator>& integrator, std::size_t i) {
+          out[i] = detail::guarded_run<R>(i, [&] {
+            try {
+              const auto& s0 = initial(i);  // a reference, or a temporary kept alive here
+              if (integrator) {
+                integrator->reset(t0, s0);
+              } else {
+                integrator.emplace(make_(*scene_, t0, s0));
+              }
+              return detail::observe_run<R>(*scene_, *integrator, i, times, observe);
+            } catch (...) {
+              integrator.reset();  // nothing of a failed run is carried into the next
+              throw;
+            }
+          });
+        });
+    return out;
+  }
+
+  [[nodiscard]] const SceneT& scene() const { return *scene_; }
+  [[nodiscard]] const EnsembleOptions& options() const { return options_; }
+
+ private:
+  const SceneT* scene_;
+  MakeIntegrator make_;
+  EnsembleOptions options_;
+};
+
+}  // namespace tumble
