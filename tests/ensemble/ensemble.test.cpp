@@ -8,7 +8,8 @@
 //    (tests/support/torque_free.hpp);
 //  - failing runs (a non-finite initial state, an observer that throws, a load that throws in a
 //    per-run scene) reported with their index and message, the other runs' results unchanged and
-//    equal to the serial loop's, including the run a thread does right after a failed one;
+//    equal to the serial loop's, including the run a thread does right after a failed one; their
+//    sum, by fold_runs and by Ensemble::fold in blocks, equal to the serial loop's in run order;
 //  - per-run scenes (dispersed inertia) against the same serial loop and the closed form;
 //  - no allocation per step (operator new counted, tests/integrate/alloc_counter.hpp), and fewer
 //    per run than making an integrator.
@@ -232,6 +233,16 @@ TEST_CASE("ensemble: a failing run is reported with its index, the others are ke
       want += (i != 3 && i != 6) ? serial[i].final.omega.norm() : 0.0;
     }
     CHECK(sum == want);
+    // Ensemble::fold: the same sum, three runs at a time, the errors in run order.
+    const auto folded = ensemble.fold<Final>(
+        runs, initial, 0.0, t.times, observe, 0.0,
+        [](double acc, std::size_t, const Final& f) { return acc + f.omega.norm(); }, 3);
+    CHECK(folded.value == want);
+    CHECK(folded.completed == runs - 2);
+    REQUIRE(folded.errors.size() == 2);
+    CHECK(folded.errors[0].run == 3);
+    CHECK(folded.errors[1].run == 6);
+    CHECK(folded.errors[1].message == "observer refuses run 6");
   }
 }
 

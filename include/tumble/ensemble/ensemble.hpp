@@ -22,14 +22,17 @@
 // - Results do not depend on the thread count, to the bit: a run's result depends only on the
 //   scene, its initial state, the factory and the times (reset() leaves nothing of an earlier
 //   run), each run writes only its own slot, and fold_runs (outcome.hpp) combines them in run
-//   order.
+//   order. Ensemble::fold folds them block by block, in run order too, for ensembles whose
+//   results are not all kept.
 // - A run that throws (the integrator, a load, an event, initial(i) or the observer) gets a
 //   RunError with its index and message; the other runs go on and keep their results.
 // The observer and initial(i) are called concurrently from several threads: they must only read
 // shared data. Per-run scenes (dispersed inertia, loads): variants.hpp.
 
+#include <algorithm>
 #include <cstddef>
 #include <optional>
+#include <stdexcept>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -60,39 +63,85 @@ template <class SceneT, class MakeIntegrator> class Ensemble {
 
   /// Runs 0, ..., runs-1, run i from (t0, initial(i)) to each of `times` (finite, non-decreasing,
   /// not before t0), calling observe(R& result, std::size_t run, double t, const SceneState&
-  /// [, const SceneT&]) at each. initial(i) returns the run's SceneState (a copy or a reference),
-  /// e.g. the scene's initial state with dispersed rates. \returns one RunOutcome per run, in run
-  /// order: its R, or its RunError. \throws std::invalid_argument for bad output times (before any
-  /// run).
+  /// [, const SceneT&]) at each. initial(i) returns the run's SceneState (a copy or a
+  /// reference), e.g. the scene's initial state with dispersed rates.
+  ///
+  /// \returns one RunOutcome per run, in run order: its R, or its RunError.
+  /// \throws std::invalid_argument for bad output times (before any run).
   template <class R, class Initial, class Times, class Observer>
   std::vector<RunOutcome<R>> integrate(std::size_t runs, Initial&& initial, double t0,
                                        const Times& times, Observer&& observe) const {
     detail::check_output_times(t0, times);
     std::vector<RunOutcome<R>> out(runs);
-    for_each_run<std::optional<Integrator>>(
-        runs, options_, [&](std::optional<Integrator>& integrator, std::size_t i) {
-          out[i] = detail::guarded_run<R>(i, [&] {
-            try {
-              const auto& s0 = initial(i);  // a reference, or a temporary kept alive here
-              if (integrator) {
-                integrator->reset(t0, s0);
-              } else {
-                integrator.emplace(make_(*scene_, t0, s0));
-              }
-              return detail::observe_run<R>(*scene_, *integrator, i, times, observe);
-            } catch (...) {
-              integrator.reset();  // nothing of a failed run is carried into the next
-              throw;
-            }
-          });
-        });
+    RunPool<Slot> pool(options_);
+    pool.for_each(0, runs, [&](Slot& integrator, std::size_t i) {
+      out[i] = run<R>(integrator, i, initial, t0, times, observe);
+    });
     return out;
+  }
+
+  /// The runs of integrate(), their results folded as they come, acc = combine(acc, run, value),
+  /// in run order (the same to the bit for any thread count), instead of kept: the runs are done
+  /// `block` at a time, and only one block's results are held. For ensembles whose results
+  /// together would not fit (a histogram, a mean and a maximum of 10^6 runs).
+  ///
+  /// \returns the folded value and the errors of the failed runs, in run order.
+  template <class R, class T, class Initial, class Times, class Observer, class Fold>
+  FoldedRuns<T> fold(std::size_t runs, Initial&& initial, double t0, const Times& times,
+                     Observer&& observe, T init, Fold&& combine, std::size_t block = 4096) const {
+    detail::check_output_times(t0, times);
+    if (block == 0) {
+      throw std::invalid_argument("tumble::Ensemble::fold: block must be >= 1");
+    }
+    FoldedRuns<T> folded{std::move(init), {}, 0};
+    std::vector<RunOutcome<R>> out(std::min(block, runs));
+    RunPool<Slot> pool(options_);  // one integrator per thread for all blocks
+    for (std::size_t first = 0; first < runs; first += block) {
+      const std::size_t last = std::min(runs, first + block);
+      pool.for_each(first, last, [&](Slot& integrator, std::size_t i) {
+        out[i - first] = run<R>(integrator, i, initial, t0, times, observe);
+      });
+      for (std::size_t i = first; i < last; ++i) {
+        RunOutcome<R>& o = out[i - first];
+        if (o.ok()) {
+          folded.value = combine(std::move(folded.value), i, o.value());
+          ++folded.completed;
+        } else {
+          folded.errors.push_back(o.error());
+        }
+        o = RunOutcome<R>();
+      }
+    }
+    return folded;
   }
 
   [[nodiscard]] const SceneT& scene() const { return *scene_; }
   [[nodiscard]] const EnsembleOptions& options() const { return options_; }
 
  private:
+  using Slot = std::optional<Integrator>;  ///< a thread's integrator, made on its first run
+
+  /// Run i on the thread's integrator: reset to (t0, initial(i)), or made there on the thread's
+  /// first run or after a failed one.
+  template <class R, class Initial, class Times, class Observer>
+  RunOutcome<R> run(Slot& integrator, std::size_t i, Initial& initial, double t0,
+                    const Times& times, Observer& observe) const {
+    return detail::guarded_run<R>(i, [&] {
+      try {
+        const auto& s0 = initial(i);  // a reference, or a temporary kept alive here
+        if (integrator) {
+          integrator->reset(t0, s0);
+        } else {
+          integrator.emplace(make_(*scene_, t0, s0));
+        }
+        return detail::observe_run<R>(*scene_, *integrator, i, times, observe);
+      } catch (...) {
+        integrator.reset();  // nothing of a failed run is carried into the next
+        throw;
+      }
+    });
+  }
+
   const SceneT* scene_;
   MakeIntegrator make_;
   EnsembleOptions options_;

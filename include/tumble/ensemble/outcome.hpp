@@ -51,6 +51,14 @@ template <class R> class RunOutcome {
   std::variant<std::monostate, R, RunError> v_;
 };
 
+/// What Ensemble::fold returns: the values of the successful runs folded in run order, how many
+/// there were, and the errors of the others, in run order.
+template <class T> struct FoldedRuns {
+  T value;
+  std::vector<RunError> errors;
+  std::size_t completed = 0;
+};
+
 /// The errors of the failed runs, in run order.
 template <class R> std::vector<RunError> failures(const std::vector<RunOutcome<R>>& outcomes) {
   std::vector<RunError> errors;

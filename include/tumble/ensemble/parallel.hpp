@@ -17,6 +17,8 @@
 // result depends only on its inputs (the integrators' reset() leaves nothing of an earlier run).
 
 #include <cstddef>
+#include <optional>
+#include <utility>
 
 #include <oneapi/tbb/blocked_range.h>
 #include <oneapi/tbb/enumerable_thread_specific.h>
@@ -27,36 +29,59 @@
 
 namespace tumble {
 
-/// Calls run(worker, i) for every i in [0, n), in blocks of options.grain runs spread over
-/// options.threads threads (EnsembleOptions). `Worker` is default-constructed once per thread
-/// that takes part, on its first block, and passed to every run that thread does, so that what
-/// it holds (an integrator, scratch) is made once per thread, not once per run. With
-/// threads == 1, or no more runs than one block, the runs are done in order in the calling
-/// thread with one worker.
-/// run must not throw for a run's own failure (catch it and record it); an exception that leaves
-/// run cancels the runs not yet started and is rethrown here (TBB's exception propagation).
+/// Threads for the runs of an ensemble, and one `Worker` per thread that takes part: default-
+/// constructed on the thread's first run and passed to every run that thread does, so that what
+/// it holds (an integrator, scratch) is made once per thread, not once per run, and kept from one
+/// for_each() to the next.
+template <class Worker> class RunPool {
+ public:
+  explicit RunPool(const EnsembleOptions& options)
+      : options_((validate(options), options)),
+        arena_(options.threads == 0 ? oneapi::tbb::task_arena::automatic : options.threads) {}
+
+  /// Calls run(worker, i) for every i in [begin, end), in blocks of options.grain runs spread
+  /// over options.threads threads. With threads == 1, or no more runs than one block, the runs
+  /// are done in order in the calling thread (no TBB task is made).
+  /// run must not throw for a run's own failure (catch it and record it): an exception that
+  /// leaves run cancels the runs not yet started and is rethrown here (TBB's propagation).
+  template <class Run> void for_each(std::size_t begin, std::size_t end, Run&& run) {
+    if (end <= begin) {
+      return;
+    }
+    if (options_.threads == 1 || end - begin <= options_.grain) {
+      if (!serial_) {
+        serial_.emplace();
+      }
+      for (std::size_t i = begin; i < end; ++i) {
+        run(*serial_, i);
+      }
+      return;
+    }
+    arena_.execute([&] {
+      oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<std::size_t>(begin, end, options_.grain),
+                                [&](const oneapi::tbb::blocked_range<std::size_t>& r) {
+                                  Worker& worker = workers_.local();
+                                  for (std::size_t i = r.begin(); i != r.end(); ++i) {
+                                    run(worker, i);
+                                  }
+                                });
+    });
+  }
+
+  [[nodiscard]] const EnsembleOptions& options() const { return options_; }
+
+ private:
+  EnsembleOptions options_;
+  std::optional<Worker> serial_;   ///< the calling thread's, for the serial path
+  oneapi::tbb::task_arena arena_;  ///< initialized on first use only
+  oneapi::tbb::enumerable_thread_specific<Worker> workers_;
+};
+
+/// run(worker, i) for every i in [0, n) on a RunPool of its own (see RunPool::for_each).
 template <class Worker, class Run>
 void for_each_run(std::size_t n, const EnsembleOptions& options, Run&& run) {
-  validate(options);
-  if (options.threads == 1 || n <= options.grain) {
-    Worker worker{};
-    for (std::size_t i = 0; i < n; ++i) {
-      run(worker, i);
-    }
-    return;
-  }
-  oneapi::tbb::enumerable_thread_specific<Worker> workers;
-  oneapi::tbb::task_arena arena(options.threads == 0 ? oneapi::tbb::task_arena::automatic
-                                                     : options.threads);
-  arena.execute([&] {
-    oneapi::tbb::parallel_for(oneapi::tbb::blocked_range<std::size_t>(0, n, options.grain),
-                              [&](const oneapi::tbb::blocked_range<std::size_t>& r) {
-                                Worker& worker = workers.local();
-                                for (std::size_t i = r.begin(); i != r.end(); ++i) {
-                                  run(worker, i);
-                                }
-                              });
-  });
+  RunPool<Worker> pool(options);
+  pool.for_each(0, n, std::forward<Run>(run));
 }
 
 }  // namespace tumble

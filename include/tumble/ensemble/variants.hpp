@@ -24,8 +24,9 @@ namespace tumble {
 /// initial state the run's), integrates it with make_integrator(scene, t0,
 /// scene.initial_state()) to each of `times`, and calls observe(R& result, std::size_t run,
 /// double t, const SceneState& [, const SceneT& the run's scene]) at each.
-/// \returns one RunOutcome per run, in run order. \throws std::invalid_argument for bad output
-/// times or options (before any run).
+///
+/// \returns one RunOutcome per run, in run order.
+/// \throws std::invalid_argument for bad output times or options (before any run).
 template <class R, class MakeScene, class MakeIntegrator, class Times, class Observer>
 std::vector<RunOutcome<R>> integrate_variants(std::size_t runs, MakeScene&& make_scene,
                                               MakeIntegrator&& make_integrator, double t0,
