@@ -2,10 +2,10 @@
 // against an independent expectation:
 //  - the tumbling body (I = diag(1, 2, 3), omega0 = (0.1, 2, 0.05) rad/s dispersed per run, MRP in
 //    the quasi-velocity form, so that runs switch charts) integrated by OdeintIntegrator and by
-//    the CVODE SceneIntegrator: every run's result, with 1 thread and with 2 threads (several
-//    grain sizes), bitwise equal to a plain serial loop that makes a new integrator for each run
-//    and calls its integrate(); and each run's attitude near the Jacobi elliptic solution
-//    (tests/support/torque_free.hpp);
+//    the CVODE SceneIntegrator (Adams and BDF): every run's result, with 1 thread and with 2
+//    threads (several grain sizes), bitwise equal to a plain serial loop that makes a new
+//    integrator for each run and calls its integrate(); and each run's attitude near the Jacobi
+//    elliptic solution (tests/support/torque_free.hpp);
 //  - failing runs (a non-finite initial state, an observer that throws, a load that throws in a
 //    per-run scene) reported with their index and message, the other runs' results unchanged and
 //    equal to the serial loop's, including the run a thread does right after a failed one; their
@@ -115,11 +115,18 @@ const auto make_cvode = [](const SceneT& s, double t0, const SceneState& y0) {
   return tumble::SceneIntegrator<SceneT>(
       s, t0, y0, tumble::test::integrator_options(tumble::CvodeMethod::adams, kTol));
 };
+// BDF keeps more between steps (the Newton iteration, the exact Jacobian and when to update it):
+// all of it reset() must not carry from one run into the next.
+const auto make_cvode_bdf = [](const SceneT& s, double t0, const SceneState& y0) {
+  return tumble::SceneIntegrator<SceneT>(
+      s, t0, y0, tumble::test::integrator_options(tumble::CvodeMethod::bdf, kTol));
+};
 
 /// The independent expectation: run i alone, a new integrator from make, its integrate().
 struct SerialRun {
   Final final;
   long steps = 0;
+  long switches = 0;  ///< chart switches: a reused integrator must restart on the run's own chart
 };
 template <class Make>
 std::vector<SerialRun> serial_loop(const Tumbling& t, const Make& make, std::size_t runs) {
@@ -130,6 +137,7 @@ std::vector<SerialRun> serial_loop(const Tumbling& t, const Make& make, std::siz
     integrator.integrate(t.times,
                          [&](double tk, const SceneState& s) { observe(out[i].final, i, tk, s); });
     out[i].steps = integrator.statistics().steps;
+    out[i].switches = integrator.statistics().chart_switches;
   }
   return out;
 }
@@ -149,6 +157,7 @@ void check_physics(const std::vector<SerialRun>& serial) {
     const double bound = tumble::test::global_error_bound(kTol, serial[i].steps, 2.0, kEnd);
     INFO("run " << i << ", " << serial[i].steps << " steps, bound " << bound);
     CHECK(serial[i].final.outputs == 5);
+    CHECK(serial[i].switches > 0);
     CHECK(tumble::test::rotation_angle_between(serial[i].final.attitude, exact.rotation(kEnd)) <
           bound);
     CHECK((serial[i].final.omega - exact.omega(kEnd)).norm() < bound);
@@ -189,7 +198,8 @@ bool mentions(const std::string& what, const std::string& part) {
 TEST_CASE("ensemble: runs equal a serial loop to the bit, whatever the threads",
           "[ensemble][ensemble]") {
   SECTION("OdeintIntegrator") { check_thread_independence(make_odeint, 16); }
-  SECTION("SceneIntegrator (CVODE)") { check_thread_independence(make_cvode, 8); }
+  SECTION("SceneIntegrator (CVODE, Adams)") { check_thread_independence(make_cvode, 8); }
+  SECTION("SceneIntegrator (CVODE, BDF)") { check_thread_independence(make_cvode_bdf, 6); }
 }
 
 TEST_CASE("ensemble: a failing run is reported with its index, the others are kept",
