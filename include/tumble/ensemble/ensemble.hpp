@@ -26,8 +26,9 @@
 //   results are not all kept.
 // - A run that throws (the integrator, a load, an event, initial(i) or the observer) gets a
 //   RunError with its index and message; the other runs go on and keep their results.
-// The observer and initial(i) are called concurrently from several threads: they must only read
-// shared data. Per-run scenes (dispersed inertia, loads): variants.hpp.
+// The factory, initial(i), the observer and the scene's loads and events are called concurrently
+// from several threads: they must only read shared data. Per-run scenes (dispersed inertia,
+// loads): variants.hpp.
 
 #include <algorithm>
 #include <cstddef>
