@@ -1,7 +1,7 @@
 # Install rules and the CMake package: find_package(tumble CONFIG) then provides tumble::tumble
 # and, when tumble was installed with CVODE support and SUNDIALS is found again on the consumer's
 # machine, tumble::cvode (component `cvode`); likewise tumble::odeint (component `odeint`, Boost
-# headers >= 1.74). Included from the top-level CMakeLists.txt when
+# headers >= 1.74) and tumble::ensemble (component `ensemble`, oneTBB). Included from the top-level CMakeLists.txt when
 # TUMBLE_INSTALL is on (the default only when tumble is the top-level project).
 #
 # Layout under the prefix:
@@ -43,6 +43,16 @@ if(TARGET tumble_odeint)
   install(EXPORT tumbleOdeintTargets NAMESPACE tumble:: DESTINATION "${TUMBLE_INSTALL_CMAKEDIR}")
 else()
   set(TUMBLE_INSTALLED_ODEINT OFF)
+endif()
+
+# tumble::ensemble likewise: its TBB::tbb link is BUILD_INTERFACE-only, and the config adds it
+# again after finding TBB on the consumer's machine.
+if(TARGET tumble_ensemble)
+  set(TUMBLE_INSTALLED_ENSEMBLE ON)
+  install(TARGETS tumble_ensemble EXPORT tumbleEnsembleTargets)
+  install(EXPORT tumbleEnsembleTargets NAMESPACE tumble:: DESTINATION "${TUMBLE_INSTALL_CMAKEDIR}")
+else()
+  set(TUMBLE_INSTALLED_ENSEMBLE OFF)
 endif()
 
 configure_package_config_file(

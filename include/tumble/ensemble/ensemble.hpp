@@ -1,0 +1,151 @@
+#pragma once
+// Ensemble: many runs of one scene, across cores. The scene is the model, shared read-only by
+// every run; each run has its own initial state and its own result, kept per run:
+//
+//   auto make = [](const Scene& s, double t0, const SceneState& y0) {
+//     return OdeintIntegrator<Scene, 13>(s, t0, y0, options);    // or SceneIntegrator (CVODE)
+//   };
+//   Ensemble ensemble(scene, make, {.threads = 2});
+//   std::vector<RunOutcome<double>> r = ensemble.integrate<double>(
+//       n, [&](std::size_t i) { return dispersed_state(i); }, 0.0, times,
+//       [](double& err, std::size_t i, double t, const SceneState& s) { err = ...; });
+//
+// - Any integrator of the library (EnsembleIntegrator, detail/run.hpp), made by the user's
+//   factory make(scene, t0, s0): its options, its method, its size template argument stay the
+//   user's. Each thread makes one on its first run and reset()s it for the next, so a run costs
+//   no construction (no CVODE memory, no Odeint buffers) and allocates only what reset() does;
+//   after a failed run the thread's integrator is dropped and made anew.
+// - The observer is called at each output time with the run's result R (value-initialized at
+//   the run's start), the run's index, the time, the state and, if it takes a fifth argument,
+//   the scene (for the observables, scene/observables.hpp); what it keeps in R is all that is
+//   kept of a run, so memory grows with the results, not with the steps or the states.
+// - Results do not depend on the thread count, to the bit: a run's result depends only on the
+//   scene, its initial state, the factory and the times (reset() leaves nothing of an earlier
+//   run), each run writes only its own slot, and fold_runs (outcome.hpp) combines them in run
+//   order. Ensemble::fold folds them block by block, in run order too, for ensembles whose
+//   results are not all kept.
+// - A run that throws (the integrator, a load, an event, initial(i) or the observer) gets a
+//   RunError with its index and message; the other runs go on and keep their results.
+// The factory, initial(i), the observer and the scene's loads and events are called concurrently
+// from several threads: they must only read shared data. Per-run scenes (dispersed inertia,
+// loads): variants.hpp.
+
+#include <algorithm>
+#include <cstddef>
+#include <optional>
+#include <stdexcept>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "tumble/ensemble/detail/run.hpp"
+#include "tumble/ensemble/options.hpp"
+#include "tumble/ensemble/outcome.hpp"
+#include "tumble/ensemble/parallel.hpp"
+#include "tumble/scene/state.hpp"
+
+namespace tumble {
+
+/// One scene, many runs. MakeIntegrator: make(const SceneT&, double t0, const SceneState& s0)
+/// returns an integrator of the scene starting at (t0, s0).
+template <class SceneT, class MakeIntegrator> class Ensemble {
+ public:
+  using Integrator = std::remove_cvref_t<
+      std::invoke_result_t<const MakeIntegrator&, const SceneT&, double, const SceneState&>>;
+  static_assert(EnsembleIntegrator<Integrator>,
+                "the factory must return an integrator with advance(t) and reset(t, state)");
+
+  /// The scene must outlive the ensemble; it is only read.
+  Ensemble(const SceneT& scene, MakeIntegrator make, EnsembleOptions options = {})
+      : scene_(&scene), make_(std::move(make)), options_(options) {
+    validate(options_);
+  }
+  Ensemble(SceneT&&, MakeIntegrator, EnsembleOptions = {}) = delete;
+
+  /// Runs 0, ..., runs-1, run i from (t0, initial(i)) to each of `times` (finite, non-decreasing,
+  /// not before t0), calling observe(R& result, std::size_t run, double t, const SceneState&
+  /// [, const SceneT&]) at each. initial(i) returns the run's SceneState (a copy or a
+  /// reference), e.g. the scene's initial state with dispersed rates.
+  ///
+  /// \returns one RunOutcome per run, in run order: its R, or its RunError.
+  /// \throws std::invalid_argument for bad output times (before any run).
+  template <class R, class Initial, class Times, class Observer>
+  std::vector<RunOutcome<R>> integrate(std::size_t runs, Initial&& initial, double t0,
+                                       const Times& times, Observer&& observe) const {
+    detail::check_output_times(t0, times);
+    std::vector<RunOutcome<R>> out(runs);
+    RunPool<Slot> pool(options_);
+    pool.for_each(0, runs, [&](Slot& integrator, std::size_t i) {
+      out[i] = run<R>(integrator, i, initial, t0, times, observe);
+    });
+    return out;
+  }
+
+  /// The runs of integrate(), their results folded as they come, acc = combine(acc, run, value),
+  /// in run order (the same to the bit for any thread count), instead of kept: the runs are done
+  /// `block` at a time, and only one block's results are held. For ensembles whose results
+  /// together would not fit (a histogram, a mean and a maximum of 10^6 runs).
+  ///
+  /// \returns the folded value and the errors of the failed runs, in run order.
+  template <class R, class T, class Initial, class Times, class Observer, class Fold>
+  FoldedRuns<T> fold(std::size_t runs, Initial&& initial, double t0, const Times& times,
+                     Observer&& observe, T init, Fold&& combine, std::size_t block = 4096) const {
+    detail::check_output_times(t0, times);
+    if (block == 0) {
+      throw std::invalid_argument("tumble::Ensemble::fold: block must be >= 1");
+    }
+    FoldedRuns<T> folded{std::move(init), {}, 0};
+    std::vector<RunOutcome<R>> out(std::min(block, runs));
+    RunPool<Slot> pool(options_);  // one integrator per thread for all blocks
+    for (std::size_t first = 0; first < runs; first += block) {
+      const std::size_t last = std::min(runs, first + block);
+      pool.for_each(first, last, [&](Slot& integrator, std::size_t i) {
+        out[i - first] = run<R>(integrator, i, initial, t0, times, observe);
+      });
+      for (std::size_t i = first; i < last; ++i) {
+        RunOutcome<R>& o = out[i - first];
+        if (o.ok()) {
+          folded.value = combine(std::move(folded.value), i, o.value());
+          ++folded.completed;
+        } else {
+          folded.errors.push_back(o.error());
+        }
+        o = RunOutcome<R>();
+      }
+    }
+    return folded;
+  }
+
+  [[nodiscard]] const SceneT& scene() const { return *scene_; }
+  [[nodiscard]] const EnsembleOptions& options() const { return options_; }
+
+ private:
+  using Slot = std::optional<Integrator>;  ///< a thread's integrator, made on its first run
+
+  /// Run i on the thread's integrator: reset to (t0, initial(i)), or made there on the thread's
+  /// first run or after a failed one.
+  template <class R, class Initial, class Times, class Observer>
+  RunOutcome<R> run(Slot& integrator, std::size_t i, Initial& initial, double t0,
+                    const Times& times, Observer& observe) const {
+    return detail::guarded_run<R>(i, [&] {
+      try {
+        const auto& s0 = initial(i);  // a reference, or a temporary kept alive here
+        if (integrator) {
+          integrator->reset(t0, s0);
+        } else {
+          integrator.emplace(make_(*scene_, t0, s0));
+        }
+        return detail::observe_run<R>(*scene_, *integrator, i, times, observe);
+      } catch (...) {
+        integrator.reset();  // nothing of a failed run is carried into the next
+        throw;
+      }
+    });
+  }
+
+  const SceneT* scene_;
+  MakeIntegrator make_;
+  EnsembleOptions options_;
+};
+
+}  // namespace tumble

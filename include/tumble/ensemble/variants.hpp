@@ -1,0 +1,53 @@
+#pragma once
+// Ensembles whose runs differ in the model itself: each run builds its own scene (dispersed
+// inertia, masses, load parameters) and integrates it from that scene's initial state. The same
+// contract as Ensemble::integrate (ensemble.hpp): a result or a RunError per run, in run order,
+// the same to the bit for any thread count.
+//
+// An integrator refers to its scene, so here each run makes its own from its own scene (the
+// integrators are not reused across runs, as in Ensemble). When only the initial state differs,
+// Ensemble with one shared scene is cheaper.
+
+#include <cstddef>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "tumble/ensemble/detail/run.hpp"
+#include "tumble/ensemble/options.hpp"
+#include "tumble/ensemble/outcome.hpp"
+#include "tumble/ensemble/parallel.hpp"
+
+namespace tumble {
+
+/// Runs 0, ..., runs-1: run i builds its scene, scene = make_scene(i) (a Scene, by value, its
+/// initial state the run's), integrates it with make_integrator(scene, t0,
+/// scene.initial_state()) to each of `times`, and calls observe(R& result, std::size_t run,
+/// double t, const SceneState& [, const SceneT& the run's scene]) at each.
+///
+/// \returns one RunOutcome per run, in run order.
+/// \throws std::invalid_argument for bad output times or options (before any run).
+template <class R, class MakeScene, class MakeIntegrator, class Times, class Observer>
+std::vector<RunOutcome<R>> integrate_variants(std::size_t runs, MakeScene&& make_scene,
+                                              MakeIntegrator&& make_integrator, double t0,
+                                              const Times& times, Observer&& observe,
+                                              const EnsembleOptions& options = {}) {
+  using SceneT = std::remove_cvref_t<std::invoke_result_t<MakeScene&, std::size_t>>;
+  using Integrator = std::remove_cvref_t<
+      std::invoke_result_t<MakeIntegrator&, const SceneT&, double, const SceneState&>>;
+  static_assert(EnsembleIntegrator<Integrator>,
+                "the factory must return an integrator with advance(t) and reset(t, state)");
+  detail::check_output_times(t0, times);
+  struct NoWorker {};
+  std::vector<RunOutcome<R>> out(runs);
+  for_each_run<NoWorker>(runs, options, [&](NoWorker&, std::size_t i) {
+    out[i] = detail::guarded_run<R>(i, [&] {
+      const SceneT scene = make_scene(i);
+      Integrator integrator = make_integrator(scene, t0, scene.initial_state());
+      return detail::observe_run<R>(scene, integrator, i, times, observe);
+    });
+  });
+  return out;
+}
+
+}  // namespace tumble

@@ -1,0 +1,392 @@
+// tumble::Ensemble and tumble::integrate_variants (include/tumble/ensemble/), each property
+// against an independent expectation:
+//  - the tumbling body (I = diag(1, 2, 3), omega0 = (0.1, 2, 0.05) rad/s dispersed per run, MRP in
+//    the quasi-velocity form, so that runs switch charts) integrated by OdeintIntegrator and by
+//    the CVODE SceneIntegrator (Adams and BDF): every run's result, with 1 thread and with 2
+//    threads (several grain sizes), bitwise equal to a plain serial loop that makes a new
+//    integrator for each run and calls its integrate(); and each run's attitude near the Jacobi
+//    elliptic solution (tests/support/torque_free.hpp);
+//  - failing runs (a non-finite initial state, an observer that throws, a load that throws in a
+//    per-run scene) reported with their index and message, the other runs' results unchanged and
+//    equal to the serial loop's, including the run a thread does right after a failed one; their
+//    sum, by fold_runs and by Ensemble::fold in blocks, equal to the serial loop's in run order;
+//  - per-run scenes (dispersed inertia) against the same serial loop and the closed form;
+//  - no allocation per step (operator new counted, tests/integrate/alloc_counter.hpp), and fewer
+//    per run than making an integrator.
+
+// Must precede every Eigen include (see alloc_counter.hpp).
+#define EIGEN_RUNTIME_NO_MALLOC
+
+#include "tumble/ensemble/ensemble.hpp"
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "integrate/alloc_counter.hpp"
+#include "support/catch.hpp"
+#include "support/random.hpp"
+#include "support/scene_fixtures.hpp"
+#include "support/torque_free.hpp"
+#include "tumble/body/rigid_body.hpp"
+#include "tumble/ensemble/variants.hpp"
+#include "tumble/force/user_force.hpp"
+#include "tumble/integrate/explicit_integrator.hpp"
+#include "tumble/integrate/scene_integrator.hpp"
+#include "tumble/orientation/modified_rodrigues.hpp"
+#include "tumble/scene/observables.hpp"
+#include "tumble/scene/scene.hpp"
+
+namespace {
+
+using Eigen::Matrix3d;
+using Eigen::Vector3d;
+using tumble::Bodies;
+using tumble::EnsembleOptions;
+using tumble::Loads;
+using tumble::RunOutcome;
+using tumble::SceneState;
+using tumble::StateForm;
+using tumble::test::kTumblingInertia;
+using tumble::test::kTumblingOmega;
+
+using Body = tumble::RigidBody<tumble::ModifiedRodriguesParameters>;
+using SceneT = tumble::Scene<Bodies<Body>, Loads<>, StateForm::quasi_velocities>;
+constexpr int kN = 3 + 3 + 6;  // [r; sigma; v; omega]
+using Odeint = tumble::OdeintIntegrator<SceneT, kN>;
+
+const Matrix3d kR0 = tumble::test::rot(0.5, Vector3d(1, -1, 2));
+constexpr double kTol = 1e-10;
+constexpr double kEnd = 20.0;
+
+/// Run i's initial rates: omega0 dispersed by up to 2 % per component.
+Vector3d run_omega(std::size_t i) {
+  const double x = static_cast<double>(i);
+  return kTumblingOmega.cwiseProduct(
+      Vector3d::Ones() + 0.02 * Vector3d(std::sin(1.1 * x), std::cos(0.7 * x), std::sin(0.3 * x)));
+}
+
+/// What a run keeps: its state at the last output time and the number of outputs seen.
+struct Final {
+  Matrix3d attitude = Matrix3d::Zero();
+  Vector3d omega = Vector3d::Zero();
+  int outputs = 0;
+};
+
+struct Tumbling {
+  SceneT scene;
+  tumble::BodyId<Body> b;
+  std::vector<SceneState> states;  ///< per run
+  std::vector<double> times{0.0, 5.0, 10.0, 15.0, kEnd};
+
+  explicit Tumbling(std::size_t runs) {
+    b = scene.add(Body(tumble::test::tumbling_mass()), {.rotation = kR0, .omega = kTumblingOmega});
+    for (std::size_t i = 0; i < runs; ++i) {
+      SceneState s = scene.initial_state();
+      tumble::set_velocity(scene, b, s, Vector3d::Zero(), run_omega(i));
+      states.push_back(s);
+    }
+  }
+
+  /// The observer of every ensemble here and of the serial loops.
+  auto observer() const {
+    return [this](Final& f, std::size_t, double, const SceneState& s) {
+      f.attitude = tumble::rotation(scene, b, s);
+      f.omega = tumble::omega(scene, b, s);
+      ++f.outputs;
+    };
+  }
+};
+
+tumble::OdeintOptions odeint_options() {
+  tumble::OdeintOptions o;
+  o.rtol = o.atol = kTol;
+  return o;
+}
+const auto make_odeint = [](const SceneT& s, double t0, const SceneState& y0) {
+  return Odeint(s, t0, y0, odeint_options());
+};
+const auto make_cvode = [](const SceneT& s, double t0, const SceneState& y0) {
+  return tumble::SceneIntegrator<SceneT>(
+      s, t0, y0, tumble::test::integrator_options(tumble::CvodeMethod::adams, kTol));
+};
+// BDF keeps more between steps (the Newton iteration, the exact Jacobian and when to update it):
+// all of it reset() must not carry from one run into the next.
+const auto make_cvode_bdf = [](const SceneT& s, double t0, const SceneState& y0) {
+  return tumble::SceneIntegrator<SceneT>(
+      s, t0, y0, tumble::test::integrator_options(tumble::CvodeMethod::bdf, kTol));
+};
+
+/// The independent expectation: run i alone, a new integrator from make, its integrate().
+struct SerialRun {
+  Final final;
+  long steps = 0;
+  long switches = 0;  ///< chart switches: a reused integrator must restart on the run's own chart
+};
+template <class Make>
+std::vector<SerialRun> serial_loop(const Tumbling& t, const Make& make, std::size_t runs) {
+  std::vector<SerialRun> out(runs);
+  for (std::size_t i = 0; i < runs; ++i) {
+    auto integrator = make(t.scene, 0.0, t.states[i]);
+    const auto observe = t.observer();
+    integrator.integrate(t.times,
+                         [&](double tk, const SceneState& s) { observe(out[i].final, i, tk, s); });
+    out[i].steps = integrator.statistics().steps;
+    out[i].switches = integrator.statistics().chart_switches;
+  }
+  return out;
+}
+
+void check_same(const RunOutcome<Final>& got, const Final& want, std::size_t i) {
+  INFO("run " << i);
+  REQUIRE(got.ok());
+  CHECK(got.value().outputs == want.outputs);
+  CHECK(got.value().attitude == want.attitude);  // bitwise
+  CHECK(got.value().omega == want.omega);
+}
+
+/// Each serial run against the Jacobi elliptic solution of its own omega0.
+void check_physics(const std::vector<SerialRun>& serial) {
+  for (std::size_t i = 0; i < serial.size(); ++i) {
+    const tumble::test::TorqueFreeBody exact(kTumblingInertia, run_omega(i), kR0);
+    const double bound = tumble::test::global_error_bound(kTol, serial[i].steps, 2.0, kEnd);
+    INFO("run " << i << ", " << serial[i].steps << " steps, bound " << bound);
+    CHECK(serial[i].final.outputs == 5);
+    CHECK(serial[i].switches > 0);
+    CHECK(tumble::test::rotation_angle_between(serial[i].final.attitude, exact.rotation(kEnd)) <
+          bound);
+    CHECK((serial[i].final.omega - exact.omega(kEnd)).norm() < bound);
+  }
+}
+
+template <class Make> void check_thread_independence(const Make& make, std::size_t runs) {
+  const Tumbling t(runs);
+  const auto serial = serial_loop(t, make, runs);
+  check_physics(serial);
+  const tumble::Ensemble ensemble1(t.scene, make, {.threads = 1});
+  const auto initial = [&](std::size_t i) -> const SceneState& { return t.states[i]; };
+  const auto one = ensemble1.template integrate<Final>(runs, initial, 0.0, t.times, t.observer());
+  REQUIRE(one.size() == runs);
+  for (std::size_t i = 0; i < runs; ++i) {
+    check_same(one[i], serial[i].final, i);
+  }
+  for (const std::size_t grain : {std::size_t{1}, std::size_t{3}}) {
+    for (const int threads : {2, 0}) {
+      INFO(threads << " threads, grain " << grain);
+      const tumble::Ensemble ensemble(t.scene, make, {.threads = threads, .grain = grain});
+      const auto many =
+          ensemble.template integrate<Final>(runs, initial, 0.0, t.times, t.observer());
+      REQUIRE(many.size() == runs);
+      for (std::size_t i = 0; i < runs; ++i) {
+        check_same(many[i], serial[i].final, i);
+      }
+    }
+  }
+}
+
+bool mentions(const std::string& what, const std::string& part) {
+  return what.find(part) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("ensemble: runs equal a serial loop to the bit, whatever the threads",
+          "[ensemble][ensemble]") {
+  SECTION("OdeintIntegrator") { check_thread_independence(make_odeint, 16); }
+  SECTION("SceneIntegrator (CVODE, Adams)") { check_thread_independence(make_cvode, 8); }
+  SECTION("SceneIntegrator (CVODE, BDF)") { check_thread_independence(make_cvode_bdf, 6); }
+}
+
+TEST_CASE("ensemble: a failing run is reported with its index, the others are kept",
+          "[ensemble][ensemble]") {
+  constexpr std::size_t runs = 10;
+  Tumbling t(runs);
+  const auto serial = serial_loop(t, make_odeint, runs);
+  t.states[3].y[kN - 2] = std::numeric_limits<double>::quiet_NaN();  // omega_y of run 3
+  const auto observe = [base = t.observer()](Final& f, std::size_t i, double tk,
+                                             const SceneState& s) {
+    if (i == 6 && tk > 7.0) {
+      throw std::runtime_error("observer refuses run 6");
+    }
+    base(f, i, tk, s);
+  };
+  const auto initial = [&](std::size_t i) -> const SceneState& { return t.states[i]; };
+  for (const int threads : {1, 2}) {
+    INFO(threads << " threads");
+    const tumble::Ensemble ensemble(t.scene, make_odeint, {.threads = threads});
+    const auto got = ensemble.integrate<Final>(runs, initial, 0.0, t.times, observe);
+    REQUIRE(got.size() == runs);
+    const auto errors = tumble::failures(got);
+    REQUIRE(errors.size() == 2);
+    CHECK(errors[0].run == 3);
+    CHECK(mentions(errors[0].message, "not finite"));
+    CHECK(errors[1].run == 6);
+    CHECK(errors[1].message == "observer refuses run 6");
+    CHECK(got[3].failed());
+    CHECK(got[6].failed());
+    CHECK_THROWS_AS(got[3].value(), std::logic_error);
+    for (std::size_t i = 0; i < runs; ++i) {
+      if (i != 3 && i != 6) {
+        check_same(got[i], serial[i].final, i);  // runs 4 and 7 follow a failure
+      }
+    }
+    // fold_runs: the successful runs, in run order.
+    const double sum = tumble::fold_runs(
+        got, 0.0, [](double acc, std::size_t, const Final& f) { return acc + f.omega.norm(); });
+    double want = 0.0;
+    for (std::size_t i = 0; i < runs; ++i) {
+      want += (i != 3 && i != 6) ? serial[i].final.omega.norm() : 0.0;
+    }
+    CHECK(sum == want);
+    // Ensemble::fold: the same sum, three runs at a time, the errors in run order.
+    const auto folded = ensemble.fold<Final>(
+        runs, initial, 0.0, t.times, observe, 0.0,
+        [](double acc, std::size_t, const Final& f) { return acc + f.omega.norm(); }, 3);
+    CHECK(folded.value == want);
+    CHECK(folded.completed == runs - 2);
+    REQUIRE(folded.errors.size() == 2);
+    CHECK(folded.errors[0].run == 3);
+    CHECK(folded.errors[1].run == 6);
+    CHECK(folded.errors[1].message == "observer refuses run 6");
+  }
+}
+
+TEST_CASE("ensemble: bad output times or options throw before any run", "[ensemble][ensemble]") {
+  const Tumbling t(2);
+  const auto initial = [&](std::size_t i) -> const SceneState& { return t.states[i]; };
+  const tumble::Ensemble ensemble(t.scene, make_odeint);
+  const std::vector<double> backwards{1.0, 0.5};
+  CHECK_THROWS_AS(ensemble.integrate<Final>(2, initial, 0.0, backwards, t.observer()),
+                  std::invalid_argument);
+  const std::vector<double> before{-1.0};
+  CHECK_THROWS_AS(ensemble.integrate<Final>(2, initial, 0.0, before, t.observer()),
+                  std::invalid_argument);
+  CHECK_THROWS_AS(tumble::Ensemble(t.scene, make_odeint, {.threads = -1}), std::invalid_argument);
+  CHECK_THROWS_AS(tumble::Ensemble(t.scene, make_odeint, {.grain = 0}), std::invalid_argument);
+}
+
+namespace {
+
+/// A load that applies nothing, except that it throws in run `fail`: a user load that fails.
+struct FailingLoad {
+  std::size_t run = 0, fail = 0;
+  template <class Kinematics> tumble::Wrench<double> operator()(double, const Kinematics&) const {
+    if (run == fail) {
+      throw std::runtime_error("load of run " + std::to_string(run) + " failed");
+    }
+    return tumble::Wrench<double>{};
+  }
+};
+using LoadT = tumble::UserForce<FailingLoad, false>;
+using VariantScene = tumble::Scene<Bodies<Body>, Loads<LoadT>, StateForm::quasi_velocities>;
+using VariantOdeint = tumble::OdeintIntegrator<VariantScene, kN>;
+
+/// Run i's inertia: diag(1, 2, 3) with the two smaller moments up to 3 % larger and the largest
+/// up to 3 % smaller (diag(1, 2, 3) lies on the triangle inequality's bound, I3 <= I1 + I2).
+Vector3d run_inertia(std::size_t i) {
+  const double x = static_cast<double>(i);
+  const Vector3d a(std::abs(std::cos(0.9 * x)), std::abs(std::sin(1.7 * x)),
+                   -std::abs(std::cos(0.4 * x)));
+  return kTumblingInertia.cwiseProduct(Vector3d::Ones() + 0.03 * a);
+}
+
+}  // namespace
+
+TEST_CASE("ensemble: per-run scenes (dispersed inertia) and a failing load",
+          "[ensemble][variants]") {
+  constexpr std::size_t runs = 6, fail = 2;
+  const auto make_scene = [](std::size_t i) {
+    VariantScene s;
+    const auto b = s.add(
+        Body(tumble::MassProperties<double>::about_centroid(1.0, run_inertia(i).asDiagonal())),
+        {.rotation = kR0, .omega = run_omega(i)});
+    s.add_load(b, LoadT(FailingLoad{i, fail}));
+    return s;
+  };
+  const auto make = [](const VariantScene& s, double t0, const SceneState& y0) {
+    return VariantOdeint(s, t0, y0, odeint_options());
+  };
+  const std::vector<double> times{0.0, 10.0, kEnd};
+  // The observer reads the attitude through the run's own scene (its fifth argument).
+  const auto observe = [](Final& f, std::size_t, double, const SceneState& s,
+                          const VariantScene& scene) {
+    f.attitude = tumble::rotation(scene, tumble::BodyId<Body>{0, 0}, s);
+    f.omega = tumble::omega(scene, tumble::BodyId<Body>{0, 0}, s);
+    ++f.outputs;
+  };
+  // The serial loop: the same scene, a new integrator, integrate().
+  std::vector<Final> want(runs);
+  for (std::size_t i = 0; i < runs; ++i) {
+    if (i == fail) {
+      continue;
+    }
+    const VariantScene s = make_scene(i);
+    auto integrator = make(s, 0.0, s.initial_state());
+    integrator.integrate(times,
+                         [&](double tk, const SceneState& st) { observe(want[i], i, tk, st, s); });
+    const tumble::test::TorqueFreeBody exact(run_inertia(i), run_omega(i), kR0);
+    const double bound =
+        tumble::test::global_error_bound(kTol, integrator.statistics().steps, 2.0, kEnd);
+    INFO("run " << i << ", bound " << bound);
+    CHECK(tumble::test::rotation_angle_between(want[i].attitude, exact.rotation(kEnd)) < bound);
+    CHECK((want[i].omega - exact.omega(kEnd)).norm() < bound);
+  }
+  for (const int threads : {1, 2}) {
+    INFO(threads << " threads");
+    const auto got = tumble::integrate_variants<Final>(runs, make_scene, make, 0.0, times, observe,
+                                                       {.threads = threads});
+    REQUIRE(got.size() == runs);
+    for (std::size_t i = 0; i < runs; ++i) {
+      INFO("run " << i);
+      if (i == fail) {
+        REQUIRE(got[i].failed());
+        CHECK(got[i].error().run == fail);
+        CHECK(got[i].error().message == "load of run 2 failed");
+      } else {
+        REQUIRE(got[i].ok());
+        CHECK(got[i].value().outputs == 3);
+        CHECK(got[i].value().attitude == want[i].attitude);  // bitwise
+        CHECK(got[i].value().omega == want[i].omega);
+      }
+    }
+  }
+}
+
+// The ensemble allocates nothing per step (operator new counted; Eigen's own allocations are
+// the integrators' concern, tested in tests/integrate/), and less per run than making an
+// integrator costs: a thread's integrator is reset, not made again.
+TEST_CASE("ensemble: no allocation per step, less per run than an integrator",
+          "[ensemble][ensemble]") {
+  const Tumbling t(8);
+  const auto initial = [&](std::size_t i) -> const SceneState& { return t.states[i]; };
+  const auto observe = [&](Final& f, std::size_t, double, const SceneState& s) {
+    f.omega = s.y.tail<3>();
+    ++f.outputs;
+  };
+  const tumble::Ensemble ensemble(t.scene, make_odeint, {.threads = 1});
+  const auto count = [&](std::size_t runs, double end) {
+    const std::vector<double> times{end};
+    tumble::test::reset_allocation_count();
+    tumble::test::set_allocation_counting(true);
+    const auto r = ensemble.integrate<Final>(runs, initial, 0.0, times, observe);
+    tumble::test::set_allocation_counting(false);
+    CHECK(tumble::failures(r).empty());
+    return tumble::test::allocation_count();
+  };
+  const long short_runs = count(4, 2.0);
+  const long long_runs = count(4, kEnd);  // ten times the steps
+  CHECK(long_runs == short_runs);
+  const long per_run = (count(8, 2.0) - short_runs) / 4;
+  tumble::test::reset_allocation_count();
+  tumble::test::set_allocation_counting(true);
+  { const Odeint one(t.scene, 0.0, t.states[0], odeint_options()); }
+  tumble::test::set_allocation_counting(false);
+  const long construction = tumble::test::allocation_count();
+  INFO(per_run << " allocations per run, " << construction << " to make an integrator");
+  CHECK(per_run < construction);
+}
