@@ -9,12 +9,6 @@
 //    large-amplitude period 4 sqrt(I_O / (m g l)) K(sin(theta0 / 2));
 //  - the reaction force at the pivot against m (a_g - g), with a_g from finite differences of
 //    the centroid's trajectory, and against the pendulum's closed form at the bottom of a swing.
-//
-// Error bounds. The motion is quasi-periodic and neutrally stable: a local error committed at
-// time t shifts the phase of the nutation by up to omega_n (t_end - t) times itself by t_end, so
-// phases and periods carry bounds of the form tol x steps x (1 + omega_n t_end)
-// (tumble::test::global_error_bound, whose factor 5 is the project's margin). The extremes of u,
-// the energy and the momenta do not accumulate phase: their errors are bounded by tol x steps.
 
 #include <cmath>
 #include <cstdio>
@@ -27,6 +21,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "integrate/fixed_point_top.hpp"
 #include "support/catch.hpp"
 #include "support/lagrange_top.hpp"
 #include "support/parameterizations.hpp"
@@ -51,68 +46,20 @@ using tumble::SceneIntegrator;
 using tumble::UniformGravity;
 using tumble::test::LagrangeTop;
 
-template <class P> using Fixed = tumble::RigidBody<P, ReferencePoint::fixed_point>;
-template <class P> using TopScene = Scene<Bodies<Fixed<P>>, Loads<UniformGravity>>;
-
-const Vector3d kPivot(0.0, 0.0, 0.3);  // on the vertical through O: p_psi = (H_O)_z
-
-template <class P> void check_top(CvodeMethod method) {
-  const LagrangeTop top;
-  TopScene<P> scene;
-  const auto id = scene.add(Fixed<P>(top.mass_properties(), kPivot), top.initial_state(kPivot));
-  scene.add_load(id, UniformGravity(top.gravity()));
-  REQUIRE(scene.size() == 2 * P::size);  // [theta; thetadot]: nothing translational
-
-  const double tol = 1e-10;
-  SceneIntegrator integrator(scene, 0.0, tumble::test::integrator_options(method, tol, 200000));
-  const int periods = 4;
-  const auto m = tumble::test::measure_top(
-      scene, id, top, scene.initial_state(),
-      [&](double t) -> const tumble::SceneState& { return integrator.advance(t); }, periods);
-  const auto stats = integrator.statistics();
-  const auto [u2, u1, u3] = top.roots();
-  const double t_end = periods * top.nutation_period();
-  const double omega_n = 2 * std::numbers::pi / top.nutation_period();
-  const double phase_bound = tumble::test::global_error_bound(tol, stats.steps, omega_n, t_end);
-  const double level_bound = 5.0 * tol * static_cast<double>(stats.steps);
-
-  const double e_umax = std::abs(m.u_max - u1), e_umin = std::abs(m.u_min - u2);
-  const double e_period = std::abs(m.period - top.nutation_period()) / top.nutation_period();
-  const double e_rate =
-      std::abs(m.precession_rate - top.mean_precession_rate()) / top.mean_precession_rate();
-  INFO(P::name << " " << tumble::test::method_name(method) << ": " << stats.steps << " steps, "
-               << stats.chart_switches << " chart switches; |u_max - u1| = " << e_umax
-               << ", |u_min - u2| = " << e_umin << ", period " << e_period << ", precession "
-               << e_rate << ", energy " << m.energy_drift << ", p_psi " << m.p_psi_drift
-               << ", p_phi " << m.p_phi_drift << "; bounds: level " << level_bound << ", phase "
-               << phase_bound);
-  if (std::getenv("TUMBLE_TEST_REPORT") != nullptr) {
-    std::printf("top %-22.*s %-5s steps %6ld switches %3ld |du1| %.1e |du2| %.1e period %.1e "
-                "precession %.1e energy %.1e p_psi %.1e p_phi %.1e\n",
-                static_cast<int>(std::string_view(P::name).size()),
-                std::string_view(P::name).data(), tumble::test::method_name(method), stats.steps,
-                stats.chart_switches, e_umax, e_umin, e_period, e_rate, m.energy_drift,
-                m.p_psi_drift, m.p_phi_drift);
-  }
-  // u between the two roots in [-1, 1] of the cubic, touching both.
-  CHECK(u2 > -1.0);
-  CHECK(u1 < 1.0);
-  CHECK(u3 > 1.0);
-  CHECK(e_umax < level_bound);
-  CHECK(e_umin < level_bound);
-  CHECK(e_period < phase_bound);
-  CHECK(e_rate < phase_bound);
-  CHECK(m.energy_drift < level_bound);
-  CHECK(m.p_psi_drift < level_bound);
-  CHECK(m.p_phi_drift < level_bound);
-}
+template <class P> using Fixed = tumble::test::FixedBody<P>;
+template <class P> using TopScene = tumble::test::TopScene<P>;
+using tumble::test::kTopPivot;
 
 }  // namespace
 
 TEMPLATE_LIST_TEST_CASE("Lagrange top on its tip: nutation, precession and invariants",
                         "[integrate][fixed_point]", TUMBLE_TEST_PARAMETERIZATIONS) {
   for (const CvodeMethod method : {CvodeMethod::bdf, CvodeMethod::adams}) {
-    check_top<TestType>(method);
+    const double tol = 1e-10;
+    tumble::test::check_top<TestType, tumble::StateForm::generalized>(
+        tumble::test::method_name(method), tol, [&](const auto& scene) {
+          return SceneIntegrator(scene, 0.0, tumble::test::integrator_options(method, tol, 200000));
+        });
   }
 }
 
@@ -248,7 +195,8 @@ TEST_CASE("reaction force at the tip of the top: m (a_g - g) from the centroid's
   const LagrangeTop top;
   using P = tumble::EulerParameters;
   TopScene<P> scene;
-  const auto id = scene.add(Fixed<P>(top.mass_properties(), kPivot), top.initial_state(kPivot));
+  const auto id =
+      scene.add(Fixed<P>(top.mass_properties(), kTopPivot), top.initial_state(kTopPivot));
   scene.add_load(id, UniformGravity(top.gravity()));
   const double tol = 1e-12;
   SceneIntegrator integrator(scene, 0.0,
