@@ -173,6 +173,46 @@ TEST_CASE("physical pendulum: small- and large-amplitude periods", "[integrate][
   }
 }
 
+TEST_CASE("events on a fixed body: a pendulum turned back at the bottom of each swing",
+          "[integrate][fixed_point]") {
+  // Released at theta0, the pendulum first passes the bottom at T/4; the event reverses omega
+  // there (set_velocity, with the fixed body's velocity zero), so it climbs back to theta0 and
+  // returns to the bottom, falling again, half a period later: events at T/4 + k T/2.
+  const Pendulum p;
+  const double theta0 = 1.2;
+  PendulumScene scene;
+  tumble::InitialState s0;
+  s0.rotation = Eigen::AngleAxisd(theta0, Vector3d::UnitX()).toRotationMatrix();
+  const auto id = scene.add(PendulumBody(p.mass_properties()), s0);
+  scene.add_load(id, UniformGravity(Vector3d(0, 0, -p.g)));
+  std::vector<double> times;
+  scene.add_event({.function =
+                       [&](double, const tumble::SceneStateView& y) {
+                         const Vector3d r = tumble::rotation(scene, id, y) * Vector3d(0, 0, -p.l);
+                         return std::atan2(r.y(), -r.z());
+                       },
+                   .direction = -1,
+                   .action =
+                       [&](double t, tumble::SceneState& y) {
+                         times.push_back(t);
+                         tumble::set_velocity(scene, id, y, Vector3d::Zero(),
+                                              -tumble::omega(scene, id, y));
+                       }});
+  const double tol = 1e-11, period = p.period(theta0);
+  SceneIntegrator integrator(scene, 0.0,
+                             tumble::test::integrator_options(CvodeMethod::bdf, tol, 200000));
+  const double t_end = 2.9 * period;  // events at 0.25, 0.75, ..., 2.75 periods
+  integrator.advance(t_end);
+  REQUIRE(times.size() == 6);
+  const double bound = tumble::test::global_error_bound(tol, integrator.statistics().steps,
+                                                        2 * std::numbers::pi / period, t_end);
+  for (std::size_t k = 0; k < times.size(); ++k) {
+    const double expected = period / 4 + static_cast<double>(k) * period / 2;
+    INFO("event " << k << " at " << times[k] << " s, expected " << expected << " s");
+    CHECK(std::abs(times[k] - expected) < bound * period);
+  }
+}
+
 TEST_CASE("reaction force at the pivot: closed form at the bottom of a swing",
           "[integrate][fixed_point]") {
   // At the bottom, moving at omega about x: the centroid accelerates towards the pivot at
