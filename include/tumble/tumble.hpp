@@ -9,7 +9,8 @@
 //                  UserForce, UserCoupling; total_wrench, generalized_force, accelerations
 //   scene/         Scene<Bodies<...>, Loads<...>> (the model), SceneState (y and chart bases),
 //                  SceneWorkspace; rhs, jacobian (Jet<N> automatic differentiation; dense or
-//                  BandMatrixMap), BlockPreconditioner, chart switching, projection, observables
+//                  BandMatrixMap), BlockPreconditioner, chart switching, projection, observables,
+//                  angular accelerations and reaction forces (accelerations.hpp)
 
 #include "tumble/body/kinematics.hpp"
 #include "tumble/body/mass_properties.hpp"
@@ -33,6 +34,7 @@
 #include "tumble/orientation/modified_rodrigues.hpp"
 #include "tumble/orientation/rodrigues.hpp"
 #include "tumble/orientation/rotation_vector.hpp"
+#include "tumble/scene/accelerations.hpp"
 #include "tumble/scene/chart.hpp"
 #include "tumble/scene/charts.hpp"
 #include "tumble/scene/jacobian.hpp"

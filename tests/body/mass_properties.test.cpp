@@ -64,6 +64,24 @@ TEST_CASE("solid box about a corner and a face centre: parallel axis theorem in 
   }
 }
 
+TEST_CASE("about_reference takes the centroid's position, not the first moment",
+          "[body][mass_properties]") {
+  // A thin uniform rod of mass m and length L along the body z axis, framed at its end c: about
+  // c the transverse moment is m L^2 / 3, about its centroid (at L/2 from c) m L^2 / 12.
+  const double m = 2.5, len = 0.8, thin = 1e-3;  // thin: the axial moment, small but positive
+  const Matrix3d ic = Vector3d(m * len * len / 3, m * len * len / 3, thin).asDiagonal();
+  const Matrix3d ig = Vector3d(m * len * len / 12, m * len * len / 12, thin).asDiagonal();
+  const Vector3d rg(0, 0, len / 2);  // the centroid's position (m), body components
+  const MP rod = MP::about_reference(m, ic, rg);
+  CHECK(rel_error(rod.inertia_centroid(), ig) < 8 * kEps);
+  CHECK(rel_error(rod.inertia_reference(), ic) < 8 * kEps);
+  CHECK(rel_error(rod.first_moment(), Vector3d(0, 0, m * len / 2)) < kEps);
+  CHECK(rel_error(Matrix3d(rod.inertia_reference_inverse() * ic), Matrix3d::Identity()) < 8 * kEps);
+  // The first moment m r_g passed where r_g is meant is another body: here its inertia about
+  // the centroid would be m L^2/3 - m (m L/2)^2 < 0, which is rejected.
+  REQUIRE_THROWS_AS(MP::about_reference(m, ic, Vector3d(m * rg)), std::invalid_argument);
+}
+
 TEST_CASE("the point-mass model has the body's mass, first moment and inertia",
           "[body][mass_properties]") {
   // The fixture that the mass-matrix and momentum suites rely on (Eqs. 1.18, 1.19 as sums).

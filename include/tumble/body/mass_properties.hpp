@@ -30,7 +30,11 @@ template <class S = double> class MassProperties {
   }
 
   /// Inertia `inertia` about the reference point c (the body frame's origin); converted to the
-  /// centroid by the parallel axis theorem before validation.
+  /// centroid by the parallel axis theorem, I_g = I_c - m (|r_g|^2 I - r_g r_g^T), before
+  /// validation.
+  /// \warning `centroid` is the centroid's POSITION r_g relative to c (m, body components), not
+  ///          the first moment m r_g (kg m): for a top of mass 2 kg whose centroid is 0.1 m up its
+  ///          axis, pass (0, 0, 0.1), not (0, 0, 0.2). The first moment is first_moment().
   [[nodiscard]] static MassProperties about_reference(const S& mass, const Matrix3<S>& inertia,
                                                       const Vector3<S>& centroid) {
     check_mass(mass);
@@ -48,7 +52,8 @@ template <class S = double> class MassProperties {
         first_moment_(other.first_moment().template cast<S>()),
         inertia_centroid_(other.inertia_centroid().template cast<S>()),
         inertia_reference_(other.inertia_reference().template cast<S>()),
-        inertia_inverse_(other.inertia_centroid_inverse().template cast<S>()) {}
+        inertia_inverse_(other.inertia_centroid_inverse().template cast<S>()),
+        inertia_reference_inverse_(other.inertia_reference_inverse().template cast<S>()) {}
 
   [[nodiscard]] const S& mass() const { return mass_; }
   /// r_g: the centroid relative to the reference point, body components.
@@ -61,6 +66,11 @@ template <class S = double> class MassProperties {
   [[nodiscard]] const Matrix3<S>& inertia_reference() const { return inertia_reference_; }
   /// I_g^{-1}, computed once here so the accelerations need no solve.
   [[nodiscard]] const Matrix3<S>& inertia_centroid_inverse() const { return inertia_inverse_; }
+  /// I_c^{-1}, computed once here: the angular acceleration of a body held at its reference
+  /// point (ReferencePoint::fixed_point) needs no solve either.
+  [[nodiscard]] const Matrix3<S>& inertia_reference_inverse() const {
+    return inertia_reference_inverse_;
+  }
   /// Principal moments of I_g in ascending order.
   [[nodiscard]] Vector3<double> principal_moments() const {
     return Eigen::SelfAdjointEigenSolver<Matrix3<double>>(values(inertia_centroid_),
@@ -83,9 +93,11 @@ template <class S = double> class MassProperties {
     first_moment_ = mass_ * centroid_;
     inertia_reference_ = inertia_centroid_ + parallel_axis(mass_, centroid_);
     inertia_inverse_ = inertia_centroid_.inverse();
+    inertia_reference_inverse_ = inertia_reference_.inverse();
     // A positive definite inertia can still be too small (or too badly scaled) for its inverse
     // to be representable, e.g. diag(1e-320, ...): reject it rather than return inf later.
-    if (!detail::all_finite(inertia_inverse_) || !detail::all_finite(inertia_reference_)) {
+    if (!detail::all_finite(inertia_inverse_) || !detail::all_finite(inertia_reference_) ||
+        !detail::all_finite(inertia_reference_inverse_)) {
       throw std::invalid_argument(
           "tumble::MassProperties: the inertia tensor about the centroid is positive definite "
           "but its inverse (or the parallel-axis inertia) overflows; rescale the units");
@@ -158,6 +170,7 @@ template <class S = double> class MassProperties {
   Matrix3<S> inertia_centroid_;
   Matrix3<S> inertia_reference_;
   Matrix3<S> inertia_inverse_;
+  Matrix3<S> inertia_reference_inverse_;
 };
 
 }  // namespace tumble

@@ -18,6 +18,14 @@
 // the second derivative of the constraint |p| = 1 (the solution of the constrained system).
 // At the centroid (Ref == centroid) r_g = 0, and the coupling terms are not computed at all.
 //
+// Held at a fixed point (Ref == fixed_point) the reference point c does not move (r_oc = const,
+// rdot_oc = 0): q = theta alone. The theta-rows of Eq. (1.32) with rddot_oc = 0,
+//   G^T I_c G thetaddot = f_v^theta + G^T M_c,
+// are then the exact equations of motion (the reaction at c does no virtual work on theta), with
+// the closed form alpha = I_c^{-1} (M_c - omega x I_c omega) about c; the r-rows,
+//   m12 thetaddot = f_v^r + F + F_R,
+// give the reaction force F_R (reaction_force). No translational term is computed.
+//
 // The pair (a_c, alpha) is public (velocity_rates): it is the whole right-hand side of the
 // quasi-velocity state [r_oc; theta; v; omega] (quasi_rates), where rdot_oc = v, thetadot comes
 // from the inverse map P::thetadot(theta, omega), vdot = a_c and omegadot = alpha; neither
@@ -66,20 +74,24 @@ class RigidBody {
   using Scalar = S;
   static constexpr ReferencePoint reference = Ref;
   static constexpr bool at_centroid = Ref == ReferencePoint::centroid;
+  static constexpr bool fixed = Ref == ReferencePoint::fixed_point;
   static constexpr int n_theta = P::size;
-  static constexpr int nq = 3 + P::size;  ///< size of q (and of qdot)
-  static constexpr int nx = nq + 6;       ///< size of the quasi-velocity state [q; v; omega]
+  static constexpr int n_r = fixed ? 0 : 3;  ///< translational coordinates: r_oc, none when fixed
+  static constexpr int nq = n_r + n_theta;   ///< size of q (and of qdot)
+  static constexpr int nv = n_r + 3;         ///< quasi-velocities: [v; omega], or omega alone
+  static constexpr int nx = nq + nv;         ///< size of the quasi-velocity state [q; v; omega]
 
   using Theta = typename P::template Coords<S>;
   using Coords = Vector<S, nq>;            ///< q, qdot, qddot, f_v, Q
   using MassMatrix = Matrix<S, nq, nq>;    ///< M (Eq. 1.23)
   using PointJacobian = Matrix<S, 3, nq>;  ///< L_r (Eq. 1.8)
   using Kinematics = BodyKinematics<S, Ref>;
-  using QuasiCoords = Vector<S, nx>;  ///< [r_oc; theta; v; omega] and its rate
+  using QuasiCoords = Vector<S, nx>;  ///< [r_oc; theta; v; omega] (fixed: [theta; omega])
 
   /// \throws std::invalid_argument if Ref is centroid but the mass properties put the centroid
   ///         away from the reference point.
-  explicit RigidBody(MassProperties<S> mass_properties) : mp_(std::move(mass_properties)) {
+  explicit RigidBody(MassProperties<S> mass_properties) requires(!fixed)
+      : mp_(std::move(mass_properties)) {
     if constexpr (at_centroid) {
       if (!(detail::value(mp_.centroid().squaredNorm()) == 0)) {
         throw std::invalid_argument(
@@ -89,15 +101,39 @@ class RigidBody {
     }
   }
 
+  /// A body held at its reference point c, which sits at `fixed_point` (r_oc, inertial
+  /// components) for all time.
+  /// \throws std::invalid_argument for a non-finite fixed point.
+  RigidBody(MassProperties<S> mass_properties, const Vector3<S>& fixed_point) requires fixed
+      : mp_(std::move(mass_properties)),
+        pivot_(fixed_point) {
+    if (!detail::all_finite(fixed_point)) {
+      throw std::invalid_argument("tumble::RigidBody: the fixed point has a non-finite entry");
+    }
+  }
+  /// The same, held at the inertial origin.
+  explicit RigidBody(MassProperties<S> mass_properties) requires fixed
+      : RigidBody(std::move(mass_properties), Vector3<S>::Zero()) {}
+
   /// The same body in another scalar type (for example Jet<N>, to differentiate).
   template <class T>
   requires(!std::is_same_v<T, S>) explicit RigidBody(const RigidBody<P, Ref, T>& other)
-      : mp_(other.mass_properties()) {}
+      : mp_(other.mass_properties()) {
+    if constexpr (fixed) {
+      pivot_ = other.fixed_point().template cast<S>();
+    }
+  }
 
   [[nodiscard]] const MassProperties<S>& mass_properties() const { return mp_; }
+  /// Where the reference point c is held, inertial components (fixed_point only).
+  [[nodiscard]] const Vector3<S>& fixed_point() const requires fixed { return pivot_; }
 
   // --- pieces of the state --------------------------------------------------------------------
-  [[nodiscard]] static Vector3<S> position(const Coords& q) { return q.template head<3>(); }
+  /// r_oc, from q; for a body held at a fixed point, that point (a member function there).
+  [[nodiscard]] static Vector3<S> position(const Coords& q) requires(!fixed) {
+    return q.template head<3>();
+  }
+  [[nodiscard]] Vector3<S> position(const Coords& /*q*/) const requires fixed { return pivot_; }
   [[nodiscard]] static Theta theta(const Coords& q) { return q.template tail<n_theta>(); }
   [[nodiscard]] static Matrix3<S> rotation(const Coords& q) { return P::rotation(theta(q)); }
   /// omega = G thetadot, body components (Eq. 1.5).
@@ -105,31 +141,50 @@ class RigidBody {
     return P::G(theta(q)) * qdot.template tail<n_theta>();
   }
   /// qdot for a given velocity of the reference point (inertial) and omega (body): the inverse
-  /// map of the parameterization.
-  [[nodiscard]] static Coords qdot_from(const Coords& q, const Vector3<S>& velocity,
+  /// map of the parameterization. A fixed body has no velocity coordinates: `velocity` (zero) is
+  /// not read.
+  [[nodiscard]] static Coords qdot_from(const Coords& q,
+                                        [[maybe_unused]] const Vector3<S>& velocity,
                                         const Vector3<S>& omega_body) {
     Coords qd;
-    qd << velocity, P::thetadot(theta(q), omega_body);
+    if constexpr (fixed) {
+      qd = P::thetadot(theta(q), omega_body);
+    } else {
+      qd << velocity, P::thetadot(theta(q), omega_body);
+    }
     return qd;
   }
 
   // --- point kinematics -----------------------------------------------------------------------
-  /// Eq. (1.1): r_op = r_oc + R r_cp, with r_cp = `r` in body components.
-  [[nodiscard]] static Vector3<S> point_position(const Coords& q, const Vector3<S>& r) {
+  /// Eq. (1.1): r_op = r_oc + R r_cp, with r_cp = `r` in body components (a member function
+  /// for a body held at a fixed point, whose r_oc is its own).
+  [[nodiscard]] static Vector3<S> point_position(const Coords& q,
+                                                 const Vector3<S>& r) requires(!fixed) {
     return position(q) + rotation(q) * r;
   }
-  /// Eq. (1.8): L_r = [I, -R S(r) G].
+  [[nodiscard]] Vector3<S> point_position(const Coords& q,
+                                          const Vector3<S>& r) const requires fixed {
+    return pivot_ + rotation(q) * r;
+  }
+  /// Eq. (1.8): L_r = [I, -R S(r) G] (fixed: -R S(r) G).
   [[nodiscard]] static PointJacobian point_jacobian(const Coords& q, const Vector3<S>& r) {
     const Theta th = theta(q);
     PointJacobian l;
-    l.template leftCols<3>().setIdentity();
+    if constexpr (!fixed) {
+      l.template leftCols<3>().setIdentity();
+    }
     l.template rightCols<n_theta>() = -P::rotation(th) * (skew(r) * P::G(th));
     return l;
   }
-  /// Eq. (1.7): rdot_op = L_r qdot = rdot_oc + R (omega x r).
+  /// Eq. (1.7): rdot_op = L_r qdot = rdot_oc + R (omega x r) (rdot_oc = 0 when fixed).
   [[nodiscard]] static Vector3<S> point_velocity(const Coords& q, const Coords& qdot,
                                                  const Vector3<S>& r) {
-    return qdot.template head<3>() + rotation(q) * omega(q, qdot).cross(r);
+    const Vector3<S> v = rotation(q) * omega(q, qdot).cross(r);
+    if constexpr (fixed) {
+      return v;
+    } else {
+      return qdot.template head<3>() + v;
+    }
   }
   /// Eq. (1.11): a_v = R [S(omega)^2 r - S(r) Gdot thetadot].
   [[nodiscard]] static Vector3<S> point_velocity_acceleration(const Coords& q, const Coords& qdot,
@@ -150,28 +205,32 @@ class RigidBody {
 
   // --- the terms of Eq. (1.32) ----------------------------------------------------------------
   /// Eq. (1.23): M = [m I, m12; m21, G^T I_c G], m12 = -R S(m r_g) G (Eq. 1.21b), zero at the
-  /// centroid (Eq. 1.33). For Euler parameters M is singular with null vector [0; p].
+  /// centroid (Eq. 1.33). For Euler parameters M is singular with null vector [0; p]. Fixed:
+  /// the theta-block G^T I_c G alone.
   [[nodiscard]] MassMatrix mass_matrix(const Coords& q) const {
     const Theta th = theta(q);
     const Matrix<S, 3, n_theta> g = P::G(th);
     MassMatrix m;
-    m.template topLeftCorner<3, 3>() = mp_.mass() * Matrix3<S>::Identity();
     m.template bottomRightCorner<n_theta, n_theta>() =
         g.transpose() * mp_.inertia_reference() * g;  // Eq. (1.21c), (1.22)
-    if constexpr (at_centroid) {
-      m.template topRightCorner<3, n_theta>().setZero();
-      m.template bottomLeftCorner<n_theta, 3>().setZero();
-    } else {
-      const Matrix<S, 3, n_theta> m12 = -P::rotation(th) * (skew(mp_.first_moment()) * g);
-      m.template topRightCorner<3, n_theta>() = m12;  // Eq. (1.21b)
-      m.template bottomLeftCorner<n_theta, 3>() = m12.transpose();
+    if constexpr (!fixed) {
+      m.template topLeftCorner<3, 3>() = mp_.mass() * Matrix3<S>::Identity();
+      if constexpr (at_centroid) {
+        m.template topRightCorner<3, n_theta>().setZero();
+        m.template bottomLeftCorner<n_theta, 3>().setZero();
+      } else {
+        const Matrix<S, 3, n_theta> m12 = -P::rotation(th) * (skew(mp_.first_moment()) * g);
+        m.template topRightCorner<3, n_theta>() = m12;  // Eq. (1.21b)
+        m.template bottomLeftCorner<n_theta, 3>() = m12.transpose();
+      }
     }
     return m;
   }
 
   /// Eqs. (1.26)-(1.27): f_v = [f_v^r; f_v^theta] with
   ///   f_v^r     = -R S(omega)^2 (m r_g) + R S(m r_g) Gdot thetadot   (zero at the centroid)
-  ///   f_v^theta = -G^T [S(omega) I_c omega + I_c Gdot thetadot].
+  ///   f_v^theta = -G^T [S(omega) I_c omega + I_c Gdot thetadot]
+  /// (f_v^theta alone when fixed).
   [[nodiscard]] Coords centrifugal_coriolis(const Coords& q, const Coords& qdot) const {
     const Theta th = theta(q);
     const Theta thd = qdot.template tail<n_theta>();
@@ -188,28 +247,36 @@ class RigidBody {
     f.template tail<n_theta>() = -(g.transpose() * inner);  // Eq. (1.27)
     if constexpr (at_centroid) {
       f.template head<3>().setZero();  // Eq. (1.33)
-    } else {
+    } else if constexpr (!fixed) {
       const Vector3<S>& s = mp_.first_moment();
-      f.template head<3>() =
+      f.template head<n_r>() =
           P::rotation(th) * (-w.cross(w.cross(s)) + s.cross(gdot_thd));  // Eq. (1.26)
     }
     return f;
   }
 
-  /// Eq. (1.31): Q = [F; G^T M_c] for the wrench reduced to c.
+  /// Eq. (1.31): Q = [F; G^T M_c] for the wrench reduced to c (fixed: G^T M_c, the force at c
+  /// does no virtual work).
   [[nodiscard]] static Coords generalized_force(const Coords& q, const Wrench<S>& w) {
     Coords f;
-    f << w.force, P::G(theta(q)).transpose() * w.moment;
+    if constexpr (fixed) {
+      f = P::G(theta(q)).transpose() * w.moment;
+    } else {
+      f << w.force, P::G(theta(q)).transpose() * w.moment;
+    }
     return f;
   }
 
   /// The wrench whose generalized force is Q: F = Q^r and M_c = (G G^T)^{-1} G Q^theta (= G^{-T}
   /// Q^theta for three-parameter sets). For Euler parameters the component of Q^theta along p is
-  /// a constraint force and does no work: it is dropped, as the constrained system does.
+  /// a constraint force and does no work: it is dropped, as the constrained system does. A fixed
+  /// body's Q has no force rows: the force is zero.
   [[nodiscard]] static Wrench<S> wrench_from(const Coords& q, const Coords& gen_force) {
     const Matrix<S, 3, n_theta> g = P::G(theta(q));
     Wrench<S> w;
-    w.force = gen_force.template head<3>();
+    if constexpr (!fixed) {
+      w.force = gen_force.template head<3>();
+    }
     w.moment = (g * g.transpose()).ldlt().solve(g * gen_force.template tail<n_theta>());
     return w;
   }
@@ -220,8 +287,10 @@ class RigidBody {
   [[nodiscard]] Kinematics kinematics(const Coords& q, const Coords& qdot) const {
     Kinematics k;
     k.mass_properties = &mp_;
-    k.position = q.template head<3>();
-    k.velocity = qdot.template head<3>();
+    k.position = position(q);
+    if constexpr (!fixed) {
+      k.velocity = qdot.template head<3>();
+    }
     const Theta th = theta(q);
     k.omega = P::G(th) * qdot.template tail<n_theta>();
     if constexpr (with_rotation || !at_centroid) {
@@ -270,15 +339,46 @@ class RigidBody {
     return velocity_rates_impl(th, k.omega, w, &k.rotation);
   }
 
+  /// Eq. (1.10): alpha = G thetaddot + Gdot thetadot, the angular acceleration in body
+  /// components, from the generalized accelerations (e.g. those of accelerations()).
+  [[nodiscard]] static Vector3<S> angular_acceleration(const Coords& q, const Coords& qdot,
+                                                       const Coords& qddot) {
+    const Theta th = theta(q);
+    Vector3<S> a = P::G(th) * qddot.template tail<n_theta>();
+    if constexpr (!detail::gdot_vanishes<P>()) {
+      a += P::Gdot_thetadot(th, Theta(qdot.template tail<n_theta>()));
+    }
+    return a;
+  }
+
+  /// The force the support exerts on a body held at c (fixed_point), inertial components, for the
+  /// attitude `rotation` (R, body -> inertial), omega (body) and the applied wrench w reduced to
+  /// c: the r-rows of Eq. (1.32) with rddot_oc = 0, F_R = m12 thetaddot - f_v^r - F, which by
+  /// Eqs. (1.21b), (1.26) and (1.10) is
+  ///   F_R = R [alpha x m r_g + omega x (omega x m r_g)] - F = m a_g - F,
+  /// with alpha from the theta-rows (velocity_rates): what the applied force F leaves of m a_g.
+  [[nodiscard]] Vector3<S> reaction_force(const Matrix3<S>& rotation, const Vector3<S>& om,
+                                          const Wrench<S>& w) const requires fixed {
+    const Vector3<S> alpha = velocity_rates_impl(Theta(), om, w, nullptr).alpha;
+    const Vector3<S>& s = mp_.first_moment();
+    const Vector3<S> ab = alpha.cross(s) + om.cross(om.cross(s));
+    return rotation * ab - w.force;
+  }
+
   /// The rate of the quasi-velocity state x = [r_oc; theta; v; omega]:
   ///   xdot = [v; P::thetadot(theta, omega); a_c; alpha]
+  /// (fixed: x = [theta; omega], xdot = [P::thetadot(theta, omega); alpha])
   /// (the inverse map of Eq. 1.5, then velocity_rates). For Euler parameters thetadot is tangent
   /// to |p| = 1 whatever |p| (p.L(p)^T omega = 0).
   /// \throws NonFiniteError when the result is not finite.
   [[nodiscard]] QuasiCoords quasi_rates(const QuasiCoords& x, const Wrench<S>& w) const {
-    const Theta th = x.template segment<n_theta>(3);
+    const Theta th = x.template segment<n_theta>(n_r);
     const Vector3<S> om = x.template tail<3>();
-    return quasi_rates_impl(x.template head<nq>(), th, x.template segment<3>(nq), om,
+    Vector3<S> v = Vector3<S>::Zero();
+    if constexpr (!fixed) {
+      v = x.template segment<3>(nq);
+    }
+    return quasi_rates_impl(x.template head<nq>(), th, v, om,
                             velocity_rates_impl(th, om, w, nullptr), w);
   }
   /// The same, for a body and its kinematics already evaluated (the scene's hot path: v and omega
@@ -334,7 +434,9 @@ class RigidBody {
                             const Matrix3<S>* rot = nullptr) const {
     const VelocityRates<S> vr = velocity_rates_impl(th, om, w, rot);
     Coords qdd;
-    qdd.template head<3>() = vr.acceleration;
+    if constexpr (!fixed) {
+      qdd.template head<3>() = vr.acceleration;
+    }
     qdd.template tail<n_theta>() = P::thetaddot(th, thd, vr.alpha);  // Eq. (1.10)
     if (!detail::all_finite_fast(qdd)) [[unlikely]] {
       throw_non_finite(q, th, w);
@@ -346,10 +448,12 @@ class RigidBody {
                                const Vector3<S>& om, const VelocityRates<S>& vr,
                                const Wrench<S>& w) const {
     QuasiCoords xd;
-    xd.template head<3>() = v;
-    xd.template segment<n_theta>(3) = P::thetadot(th, om);  // inverse of Eq. (1.5)
-    xd.template segment<3>(nq) = vr.acceleration;
+    xd.template segment<n_theta>(n_r) = P::thetadot(th, om);  // inverse of Eq. (1.5)
     xd.template tail<3>() = vr.alpha;
+    if constexpr (!fixed) {
+      xd.template head<3>() = v;
+      xd.template segment<3>(nq) = vr.acceleration;
+    }
     if (!detail::all_finite_fast(xd)) [[unlikely]] {
       throw_non_finite(q, th, w, true);
     }
@@ -358,28 +462,35 @@ class RigidBody {
 
   VelocityRates<S> velocity_rates_impl(const Theta& th, const Vector3<S>& om, const Wrench<S>& w,
                                        const Matrix3<S>* rot) const {
-    const S& m = mp_.mass();
-    const Matrix3<S>& ig = mp_.inertia_centroid();
     VelocityRates<S> vr;
     // Products are evaluated into named vectors: small expression trees that the compiler inlines
     // whole (nested product expressions were left as out-of-line calls, 30% of the time).
-    const Vector3<S> h = ig * om;  // angular momentum about the centroid, body components
     // Eq. (1.32) through the Newton-Euler closed form of the file comment; Eq. (1.33) at the
     // centroid, where r_g = 0 removes the coupling terms.
     if constexpr (at_centroid) {
       (void)rot;
+      const Vector3<S> h = mp_.inertia_centroid() * om;  // angular momentum about g, body
       const Vector3<S> mg = w.moment - om.cross(h);
       vr.alpha = mp_.inertia_centroid_inverse().lazyProduct(mg);
-      vr.acceleration = w.force / m;
+      vr.acceleration = w.force / mp_.mass();
+    } else if constexpr (fixed) {
+      // The theta-rows of Eq. (1.32) with rddot_oc = 0: I_c alpha = M_c - omega x I_c omega,
+      // moments about the fixed point c; the force at c (reaction included) does not enter.
+      (void)rot;
+      const Vector3<S> hc = mp_.inertia_reference() * om;
+      const Vector3<S> mc = w.moment - om.cross(hc);
+      vr.alpha = mp_.inertia_reference_inverse().lazyProduct(mc);
+      vr.acceleration.setZero();
     } else {
       const Matrix3<S> r = rot ? *rot : P::rotation(th);
       const Vector3<S>& rg = mp_.centroid();
+      const Vector3<S> h = mp_.inertia_centroid() * om;  // angular momentum about g, body
       // Moment about the centroid: M_g = M_c - r_g x F^f.
       const Vector3<S> fb = r.transpose() * w.force;
       const Vector3<S> mg = w.moment - rg.cross(fb) - om.cross(h);
       vr.alpha = mp_.inertia_centroid_inverse().lazyProduct(mg);
       const Vector3<S> ab = vr.alpha.cross(rg) + om.cross(om.cross(rg));
-      vr.acceleration = w.force / m - r * ab;
+      vr.acceleration = w.force / mp_.mass() - r * ab;
     }
     return vr;
   }
@@ -403,7 +514,9 @@ class RigidBody {
     throw NonFiniteError(os.str());
   }
 
+  struct NoPivot {};
   MassProperties<S> mp_;
+  [[no_unique_address]] std::conditional_t<fixed, Vector3<S>, NoPivot> pivot_{};
 };
 
 }  // namespace tumble

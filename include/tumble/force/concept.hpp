@@ -8,6 +8,9 @@
 //   static constexpr bool needs_rotation(ReferencePoint ref)
 //   template <class S, ReferencePoint Ref>
 //   void apply(const S& t, const BodyKinematics<S, Ref>& k, Wrench<S>& w) const
+// The concept checks apply() for the centroid and offset frames; a body held at a fixed point
+// (ReferencePoint::fixed_point) calls it with BodyKinematics<S, fixed_point>, whose position is the
+// fixed point and whose velocity is zero, so an apply() templated on Ref serves all three.
 
 #include <concepts>
 
@@ -17,13 +20,14 @@
 namespace tumble {
 
 template <class F>
-concept ForceElement =
-    requires(const F& f, const double& t, const BodyKinematics<double, ReferencePoint::centroid>& k0,
-             const BodyKinematics<double, ReferencePoint::offset>& k1, Wrench<double>& w) {
-      { F::needs_rotation(ReferencePoint::centroid) } -> std::convertible_to<bool>;
-      f.apply(t, k0, w);
-      f.apply(t, k1, w);
-    };
+concept ForceElement = requires(const F& f, const double& t,
+                                const BodyKinematics<double, ReferencePoint::centroid>& k0,
+                                const BodyKinematics<double, ReferencePoint::offset>& k1,
+                                Wrench<double>& w) {
+  { F::needs_rotation(ReferencePoint::centroid) } -> std::convertible_to<bool>;
+  f.apply(t, k0, w);
+  f.apply(t, k1, w);
+};
 
 namespace detail {
 template <class S, class Derived> auto cast(const Eigen::MatrixBase<Derived>& x) {

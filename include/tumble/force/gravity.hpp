@@ -1,7 +1,7 @@
 #pragma once
 // Uniform gravity: the force m g (inertial components) at the centroid. For a body framed at its
-// centroid it is a pure force and needs no rotation matrix; off the centroid it adds the moment
-// r_g x (R^T m g) about the reference point (Eq. 1.30).
+// centroid it is a pure force and needs no rotation matrix; off the centroid (a frame at an offset
+// or at a fixed point) it adds the moment r_g x (R^T m g) about the reference point (Eq. 1.30).
 
 #include <stdexcept>
 
@@ -24,13 +24,15 @@ class UniformGravity {
   template <class S, ReferencePoint Ref>
   [[nodiscard]] S potential_energy(const BodyKinematics<S, Ref>& k) const {
     Vector3<S> rg = k.position;
-    if constexpr (Ref == ReferencePoint::offset) {
+    if constexpr (Ref != ReferencePoint::centroid) {
       rg = k.point_position(k.mass_properties->centroid());
     }
     return -k.mass_properties->mass() * detail::cast<S>(g_).dot(rg);
   }
 
-  static constexpr bool needs_rotation(ReferencePoint ref) { return ref == ReferencePoint::offset; }
+  static constexpr bool needs_rotation(ReferencePoint ref) {
+    return ref != ReferencePoint::centroid;
+  }
 
   template <class S, ReferencePoint Ref>
   void apply(const S& /*t*/, const BodyKinematics<S, Ref>& k, Wrench<S>& w) const {

@@ -29,7 +29,7 @@ template <class SceneT, class Y, class G> void chart_roots(const SceneT& scene, 
     using Body = std::remove_cvref_t<decltype(e.body)>;
     using P = typename Body::Param;
     if constexpr (Chart<P>::has_singularity) {
-      const typename Body::Theta th = y.template segment<Body::n_theta>(e.offset + 3);
+      const typename Body::Theta th = y.template segment<Body::n_theta>(e.offset + e.theta_at);
       g[i++] = P::singularity_distance(th) - e.switch_distance;
     }
   });
@@ -41,7 +41,7 @@ template <class Entry, class Y> void leave_chart(const Entry& e, Y& y, Matrix3<d
   using Body = std::remove_cvref_t<decltype(e.body)>;
   using P = typename Body::Param;
   static_assert(Chart<P>::has_singularity, "only three-parameter sets leave their chart");
-  const typename Body::Theta th = y.template segment<Body::n_theta>(e.offset + 3);
+  const typename Body::Theta th = y.template segment<Body::n_theta>(e.offset + e.theta_at);
   typename Body::Theta th_new;
   if constexpr (Chart<P>::uses_shadow_set) {
     th_new = P::shadow(th);
@@ -52,10 +52,10 @@ template <class Entry, class Y> void leave_chart(const Entry& e, Y& y, Matrix3<d
     base = EulerParameters::rotation(EulerParameters::from_rotation(b));
     th_new = c;
   }
-  y.template segment<Body::n_theta>(e.offset + 3) = th_new;
+  y.template segment<Body::n_theta>(e.offset + e.theta_at) = th_new;
   if constexpr (!Entry::quasi) {  // thetadot' for the same omega = G(theta) thetadot
-    const Vector3<double> w = P::G(th) * y.template segment<Body::n_theta>(e.rates + 3);
-    y.template segment<Body::n_theta>(e.rates + 3) = P::thetadot(th_new, w);
+    const Vector3<double> w = P::G(th) * y.template segment<Body::n_theta>(e.rates + e.theta_at);
+    y.template segment<Body::n_theta>(e.rates + e.theta_at) = P::thetadot(th_new, w);
   }
 }
 
@@ -89,7 +89,7 @@ int recenter_charts(const SceneT& scene, Y&& y, std::span<Matrix3<double>> base,
     using Body = std::remove_cvref_t<decltype(e.body)>;
     using P = typename Body::Param;
     if constexpr (Chart<P>::has_singularity) {
-      const typename Body::Theta th = y.template segment<Body::n_theta>(e.offset + 3);
+      const typename Body::Theta th = y.template segment<Body::n_theta>(e.offset + e.theta_at);
       if (P::singularity_distance(th) < e.switch_distance) {
         leave_chart(e, y, base[e.id]);
         on_switch(e.id);

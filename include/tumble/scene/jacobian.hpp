@@ -103,8 +103,7 @@ void body_block_in(const SceneT& scene, SceneWorkspace<SceneT>& ws, const Entry&
   const Vector<J, nq> q = seed<N>(y.template segment<nq>(e.offset), 0);
   const Vector<J, nr> rates = seed<N>(y.template segment<nr>(e.rates), nq);
   BodyKinematics<J, Body::reference> k;
-  k.mass_properties = &body.mass_properties();
-  body_kinematics<Body, Entry::form>(q, rates, base, e.needs_rotation, k);
+  body_kinematics<Entry::form>(body, q, rates, base, e.needs_rotation, k);
   Wrench<J> w;
   one_body_loads(scene, e, J(t), k, w,
                  std::make_index_sequence<std::tuple_size_v<typename SceneT::LoadTypes>>{});
@@ -160,14 +159,12 @@ void coupling_block(SceneWorkspace<SceneT>& ws, const Load& load, const EntryA& 
   const RigidBody<typename BodyB::Param, BodyB::reference, J> bb(eb.body);
   BodyKinematics<J, BodyA::reference> ka;
   BodyKinematics<J, BodyB::reference> kb;
-  ka.mass_properties = &ba.mass_properties();
-  kb.mass_properties = &bb.mass_properties();
-  body_kinematics<BodyA, EntryA::form>(Vector<J, qa>(seed<N>(y.template segment<qa>(ea.offset), 0)),
-                                       Vector<J, ra>(seed<N>(y.template segment<ra>(ea.rates), qa)),
-                                       base[ea.id], true, ka);
-  body_kinematics<BodyB, EntryB::form>(
-      Vector<J, qb>(seed<N>(y.template segment<qb>(eb.offset), na)),
-      Vector<J, rb>(seed<N>(y.template segment<rb>(eb.rates), na + qb)), base[eb.id], true, kb);
+  body_kinematics<EntryA::form>(ba, Vector<J, qa>(seed<N>(y.template segment<qa>(ea.offset), 0)),
+                                Vector<J, ra>(seed<N>(y.template segment<ra>(ea.rates), qa)),
+                                base[ea.id], true, ka);
+  body_kinematics<EntryB::form>(bb, Vector<J, qb>(seed<N>(y.template segment<qb>(eb.offset), na)),
+                                Vector<J, rb>(seed<N>(y.template segment<rb>(eb.rates), na + qb)),
+                                base[eb.id], true, kb);
   Wrench<J> wa, wb;
   load.apply(J(t), static_cast<const KinematicsView<J>&>(ka),
              static_cast<const KinematicsView<J>&>(kb), wa, wb);

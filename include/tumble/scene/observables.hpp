@@ -4,10 +4,15 @@
 // function of the scene (the model) and a state (a SceneState or a view of an integrator's
 // state), so that a saved state reads the same whenever and by whichever copy of the scene it is
 // read. Units: SI (m, m/s, rad/s, J, kg m/s, kg m^2/s); vectors in inertial components unless
-// said otherwise (omega is in body components, as everywhere in tumble).
+// said otherwise (omega is in body components, as everywhere in tumble). A body held at a fixed
+// point (ReferencePoint::fixed_point) has no translational state: its position is its fixed point
+// and its velocity zero. What needs the loads (angular accelerations, reaction forces) is in
+// accelerations.hpp.
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <tuple>
 #include <type_traits>
 
@@ -22,7 +27,7 @@ namespace tumble {
 namespace detail {
 template <class Entry> auto theta_of(const Entry& e, const SceneStateView& s) {
   using Body = std::remove_cvref_t<decltype(e.body)>;
-  return typename Body::Theta(s.y.template segment<Body::n_theta>(e.offset + 3));
+  return typename Body::Theta(s.y.template segment<Body::n_theta>(e.offset + e.theta_at));
 }
 /// R = R0 R(theta), Eq. (1.1) with the chart base.
 template <class Entry> Matrix3<double> rotation_of(const Entry& e, const SceneStateView& s) {
@@ -39,17 +44,33 @@ template <class Entry> Matrix3<double> rotation_of(const Entry& e, const SceneSt
 template <class Entry> Vector3<double> omega_of(const Entry& e, const SceneStateView& s) {
   using Body = std::remove_cvref_t<decltype(e.body)>;
   if constexpr (Entry::quasi) {
-    return s.y.template segment<3>(e.rates + 3);
+    return s.y.template segment<3>(e.rates + e.theta_at);
   } else {
-    const typename Body::Theta thd = s.y.template segment<Body::n_theta>(e.rates + 3);
+    const typename Body::Theta thd = s.y.template segment<Body::n_theta>(e.rates + e.theta_at);
     return Body::Param::G(theta_of(e, s)) * thd;
+  }
+}
+/// r_oc: from the state, or the fixed point.
+template <class Entry> Vector3<double> position_of(const Entry& e, const SceneStateView& s) {
+  if constexpr (std::remove_cvref_t<decltype(e.body)>::fixed) {
+    return e.body.fixed_point();
+  } else {
+    return s.y.template segment<3>(e.offset);
+  }
+}
+/// rdot_oc: from the state (the rates start with v in both forms), or zero at a fixed point.
+template <class Entry> Vector3<double> velocity_of(const Entry& e, const SceneStateView& s) {
+  if constexpr (std::remove_cvref_t<decltype(e.body)>::fixed) {
+    return Vector3<double>::Zero();
+  } else {
+    return s.y.template segment<3>(e.rates);
   }
 }
 /// rdot of the centroid, Eq. (1.4) with r_cp = r_cg.
 template <class Entry>
 Vector3<double> centroid_velocity_of(const Entry& e, const SceneStateView& s) {
   using Body = std::remove_cvref_t<decltype(e.body)>;
-  const Vector3<double> v = s.y.template segment<3>(e.rates);
+  const Vector3<double> v = velocity_of(e, s);
   if constexpr (Body::at_centroid) {
     return v;
   } else {
@@ -60,10 +81,9 @@ Vector3<double> centroid_velocity_of(const Entry& e, const SceneStateView& s) {
 template <class Entry> auto kinematics_of(const Entry& e, const SceneStateView& s) {
   using Body = std::remove_cvref_t<decltype(e.body)>;
   BodyKinematics<double, Body::reference> k;
-  k.mass_properties = &e.body.mass_properties();
-  body_kinematics<Body, Entry::form>(s.y.template segment<Body::nq>(e.offset),
-                                     s.y.template segment<Entry::rate_size>(e.rates), s.base[e.id],
-                                     true, k);
+  body_kinematics<Entry::form>(e.body, s.y.template segment<Body::nq>(e.offset),
+                               s.y.template segment<Entry::rate_size>(e.rates), s.base[e.id], true,
+                               k);
   return k;
 }
 }  // namespace detail
@@ -79,17 +99,17 @@ template <class SceneT, class Body>
 [[nodiscard]] Vector3<double> omega(const SceneT& scene, BodyId<Body> b, const SceneStateView& s) {
   return detail::omega_of(scene.entry(b), s);
 }
-/// r_oc of body b's reference point, inertial, m.
+/// r_oc of body b's reference point, inertial, m (its fixed point, if held).
 template <class SceneT, class Body>
 [[nodiscard]] Vector3<double> position(const SceneT& scene, BodyId<Body> b,
                                        const SceneStateView& s) {
-  return s.y.template segment<3>(scene.entry(b).offset);
+  return detail::position_of(scene.entry(b), s);
 }
-/// rdot_oc of body b's reference point, inertial, m/s.
+/// rdot_oc of body b's reference point, inertial, m/s (zero, if held at a fixed point).
 template <class SceneT, class Body>
 [[nodiscard]] Vector3<double> velocity(const SceneT& scene, BodyId<Body> b,
                                        const SceneStateView& s) {
-  return s.y.template segment<3>(scene.entry(b).rates);  // the rates start with v in both forms
+  return detail::velocity_of(scene.entry(b), s);
 }
 /// r_og of body b's centroid, inertial, m.
 template <class SceneT, class Body>
@@ -101,15 +121,23 @@ template <class SceneT, class Body>
 
 /// Sets the velocity (inertial, m/s) and the angular velocity (body, rad/s) of body b in s, e.g.
 /// in an event action (an impulse). The attitude and the chart are unchanged.
+/// \throws std::invalid_argument for a nonzero v on a body held at a fixed point.
 template <class SceneT, class Body>
 void set_velocity(const SceneT& scene, BodyId<Body> b, SceneState& s, const Vector3<double>& v,
                   const Vector3<double>& omega_body) {
   const auto& e = scene.entry(b);
-  s.y.template segment<3>(e.rates) = v;
-  if constexpr (std::remove_cvref_t<decltype(e)>::quasi) {
-    s.y.template segment<3>(e.rates + 3) = omega_body;
+  if constexpr (Body::fixed) {
+    if (!v.isZero(0)) {
+      throw std::invalid_argument("tumble::set_velocity: body " + std::to_string(b.id) +
+                                  " is held at a fixed point: its velocity is zero");
+    }
   } else {
-    s.y.template segment<Body::n_theta>(e.rates + 3) =
+    s.y.template segment<3>(e.rates) = v;
+  }
+  if constexpr (std::remove_cvref_t<decltype(e)>::quasi) {
+    s.y.template segment<3>(e.rates + e.theta_at) = omega_body;
+  } else {
+    s.y.template segment<Body::n_theta>(e.rates + e.theta_at) =
         Body::Param::thetadot(detail::theta_of(e, s), omega_body);
   }
 }
@@ -178,8 +206,7 @@ template <class SceneT>
   scene.for_each_entry([&](const auto& e) {
     const auto& mp = e.body.mass_properties();
     const Matrix3<double> r = detail::rotation_of(e, s);
-    const Vector3<double> rg =
-        Vector3<double>(s.y.template segment<3>(e.offset)) + r * mp.centroid();
+    const Vector3<double> rg = detail::position_of(e, s) + r * mp.centroid();
     h += rg.cross(mp.mass() * detail::centroid_velocity_of(e, s)) +
          r * (mp.inertia_centroid() * detail::omega_of(e, s));
   });
@@ -195,11 +222,11 @@ template <class SceneT>
   scene.for_each_entry([&](const auto& e) {
     using Body = std::remove_cvref_t<decltype(e.body)>;
     if constexpr (Body::Param::has_constraint && std::remove_cvref_t<decltype(e)>::quasi) {
-      const Vector4<double> p = s.y.template segment<4>(e.offset + 3);
+      const Vector4<double> p = s.y.template segment<4>(e.offset + e.theta_at);
       d = std::max(d, std::abs(p.norm() - 1.0));
     } else if constexpr (Body::Param::has_constraint) {
-      const Vector4<double> p = s.y.template segment<4>(e.offset + 3);
-      const Vector4<double> pd = s.y.template segment<4>(e.rates + 3);
+      const Vector4<double> p = s.y.template segment<4>(e.offset + e.theta_at);
+      const Vector4<double> pd = s.y.template segment<4>(e.rates + e.theta_at);
       d = std::max({d, std::abs(p.norm() - 1.0), std::abs(p.dot(pd))});
     }
   });

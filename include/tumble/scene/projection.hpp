@@ -21,7 +21,7 @@ void project(const SceneT& scene, const Y& y, C&& corr, E&& err) {
   scene.for_each_entry([&](const auto& e) {
     using Body = std::remove_cvref_t<decltype(e.body)>;
     if constexpr (Body::Param::has_constraint && std::remove_cvref_t<decltype(e)>::quasi) {
-      const int ip = e.offset + 3;
+      const int ip = e.offset + e.theta_at;
       const Vector4<double> p = y.template segment<4>(ip);
       const Vector4<double> pn = p / p.norm();
       corr.template segment<4>(ip) = pn - p;
@@ -30,7 +30,7 @@ void project(const SceneT& scene, const Y& y, C&& corr, E&& err) {
         err.template segment<4>(ip) = ep - pn.dot(ep) * pn;
       }
     } else if constexpr (Body::Param::has_constraint) {
-      const int ip = e.offset + 3, iv = e.rates + 3;
+      const int ip = e.offset + e.theta_at, iv = e.rates + e.theta_at;
       const Vector4<double> p = y.template segment<4>(ip);
       const Vector4<double> pd = y.template segment<4>(iv);
       const Vector4<double> pn = p / p.norm();

@@ -33,11 +33,9 @@ void scene_kinematics(const SceneT& scene, SceneWorkspace<SceneT>& ws, const Y& 
   scene.for_each_entry([&](const auto& e) {
     using Body = std::remove_cvref_t<decltype(e.body)>;
     using E = std::remove_cvref_t<decltype(e)>;
-    auto& k = ws.kinematics(e);
-    k.mass_properties = &e.body.mass_properties();
-    body_kinematics<Body, E::form>(y.template segment<Body::nq>(e.offset),
-                                   y.template segment<E::rate_size>(e.rates), base[e.id],
-                                   e.needs_rotation, k);
+    body_kinematics<E::form>(e.body, y.template segment<Body::nq>(e.offset),
+                             y.template segment<E::rate_size>(e.rates), base[e.id],
+                             e.needs_rotation, ws.kinematics(e));
     ws.wrench(e.id) = Wrench<double>{};
   });
 }

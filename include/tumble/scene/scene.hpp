@@ -95,17 +95,22 @@ concept DifferentiableLoad = requires(const L& l, const Jet<2>& t,
 template <class Body, StateForm Form> struct SceneEntry {
   static constexpr StateForm form = Form;
   static constexpr bool quasi = Form == StateForm::quasi_velocities;
-  /// The length of the body's rates in y: qdot (nq), or [v; omega] (6).
-  static constexpr int rate_size = quasi ? 6 : Body::nq;
-  /// The length of the body's block in y: [q; qdot] (2 nq) or [q; v; omega] (nq + 6).
+  /// The length of the body's rates in y: qdot (nq), or the quasi-velocities (nv: [v; omega], or
+  /// omega alone for a body held at a fixed point).
+  static constexpr int rate_size = quasi ? Body::nv : Body::nq;
+  /// The length of the body's block in y: [q; qdot] (2 nq) or [q; v; omega] (nq + nv).
   static constexpr int block_size = Body::nq + rate_size;
+  /// Where theta starts in the block, and omega (or thetadot) in the rates: after r_oc (and v),
+  /// which a body held at a fixed point does not have.
+  static constexpr int theta_at = Body::n_r;
 
   Body body;
-  int id;                                    ///< global index
-  int local;                                 ///< index among the bodies of its type
-  int offset;                                ///< first entry of its block (q first) in y
-  int rates;                                 ///< first entry of its rates in y: offset + nq
-  bool needs_rotation = !Body::at_centroid;  ///< some load (or the offset frame) reads R
+  int id;      ///< global index
+  int local;   ///< index among the bodies of its type
+  int offset;  ///< first entry of its block (q first) in y
+  int rates;   ///< first entry of its rates in y: offset + nq
+  /// Some load (or the offset frame) reads R.
+  bool needs_rotation = Body::reference == ReferencePoint::offset;
   double switch_distance = Chart<typename Body::Param>::switch_distance();
 };
 
@@ -151,13 +156,19 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
   static constexpr bool has_charts = (Chart<typename B::Param>::has_singularity || ...);
 
   // --- building -------------------------------------------------------------------------------
-  /// Add a body with its physical initial state. Returns its handle.
-  /// \throws std::invalid_argument for a non-finite or non-orthonormal initial state.
+  /// Add a body with its physical initial state. Returns its handle. A body held at a fixed point
+  /// (ReferencePoint::fixed_point) has no translational state: s.position must be its fixed point
+  /// and s.velocity zero.
+  /// \throws std::invalid_argument for a non-finite or non-orthonormal initial state, or a fixed
+  ///         body whose s.position or s.velocity contradict its fixed point.
   template <class Body> BodyId<Body> add(Body body, const InitialState& s = {}) {
     static_assert(detail::contains<Body, B...>, "this body type is not in the scene's Bodies<...>");
     check_initial_state(s, body_count());
+    if constexpr (Body::fixed) {
+      check_fixed_point(s, body.fixed_point(), body_count());
+    }
     using P = typename Body::Param;
-    constexpr int nq = Body::nq;
+    constexpr int nq = Body::nq, nr = Body::n_r;
     auto& group = std::get<std::vector<Entry<Body>>>(groups_);
     const int id = body_count();
     const int local = static_cast<int>(group.size());
@@ -176,13 +187,15 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
       chart_bodies_.push_back(id);
     }
     y0_.y.conservativeResize(size_ + block);
-    y0_.y.template segment<3>(size_) = s.position;
-    y0_.y.template segment<Body::n_theta>(size_ + 3) = theta;
-    y0_.y.template segment<3>(size_ + nq) = s.velocity;
+    if constexpr (nr > 0) {
+      y0_.y.template segment<3>(size_) = s.position;
+      y0_.y.template segment<3>(size_ + nq) = s.velocity;
+    }
+    y0_.y.template segment<Body::n_theta>(size_ + nr) = theta;
     if constexpr (Entry<Body>::quasi) {
-      y0_.y.template segment<3>(size_ + nq + 3) = s.omega;
+      y0_.y.template segment<3>(size_ + nq + nr) = s.omega;
     } else {
-      y0_.y.template segment<Body::n_theta>(size_ + nq + 3) = P::thetadot(theta, s.omega);
+      y0_.y.template segment<Body::n_theta>(size_ + nq + nr) = P::thetadot(theta, s.omega);
     }
     y0_.base.push_back(base);
     group.push_back(std::move(e));
@@ -368,6 +381,19 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
       throw std::invalid_argument("tumble::Scene::add: the initial rotation is not a proper "
                                   "rotation matrix (|R^T R - I| = " +
                                   std::to_string(orth) + ")");
+    }
+  }
+
+  /// A body held at a fixed point starts there, at rest.
+  static void check_fixed_point(const InitialState& s, const Vector3<double>& fixed_point, int id) {
+    if (s.position != fixed_point || !s.velocity.isZero(0)) {
+      std::ostringstream os;
+      os.precision(17);
+      os << "tumble::Scene::add: body " << id << " is held at its fixed point ("
+         << fixed_point.transpose() << "): the initial position must be that point (got "
+         << s.position.transpose() << ") and the initial velocity zero (got "
+         << s.velocity.transpose() << ")";
+      throw std::invalid_argument(os.str());
     }
   }
 

@@ -8,7 +8,9 @@
 //     StateForm::generalized       [q; qdot]       = [r_oc (3); theta (n); rdot_oc (3); thetadot
 //     (n)] StateForm::quasi_velocities  [q; v; omega]   = [r_oc (3); theta (n); v (3); omega (3)]
 //   with v = rdot_oc (inertial components) and omega the body's angular velocity in body
-//   components (Eq. 1.5: omega = G thetadot). The rates start at offset + nq in both forms;
+//   components (Eq. 1.5: omega = G thetadot). The rates start at offset + nq in both forms; a
+//   body held at a fixed point (ReferencePoint::fixed_point) has no r_oc and no v: its block is
+//   [theta; thetadot] or [theta; omega];
 // - `base`, the discrete state: the chart base R0 of every body, one per body in the same order,
 //   with the attitude R = R0 R(theta). A three-parameter body's base changes when its chart is
 //   re-centered before a singularity (chart.hpp, charts.hpp); it is the identity for Euler
@@ -33,7 +35,7 @@ namespace tumble {
 ///   tumbling body, and neither thetaddot nor Gdot thetadot is computed.
 enum class StateForm {
   generalized,      ///< [r_oc; theta; rdot_oc; thetadot] per body, size 2 nq
-  quasi_velocities  ///< [r_oc; theta; v; omega] per body, size nq + 6
+  quasi_velocities  ///< [r_oc; theta; v; omega] per body, size nq + 6 ([theta; omega] if fixed)
 };
 
 /// The chart bases of a scene's bodies, one per body (body id order).

@@ -15,19 +15,27 @@
 
 namespace tumble::detail {
 
-/// The kinematics loads read, Eqs. (1.1), (1.4)-(1.5): r_oc, rdot_oc, omega and, when
-/// with_rotation, R = R0 R(theta) with the chart base R0, from a body's coordinates q and its
-/// rates in the state form Form: qd = qdot (omega = G thetadot, Eq. 1.5) or qd = [v; omega]
-/// (omega read as is, no G). Forced inline: GCC 12 left it out of line in the right-hand side,
-/// which cost 35% of an offset Euler-parameter right-hand side (150 -> 202 ns; 151 ns inlined).
-template <class Body, StateForm Form, class Q, class Qd, class S>
-[[gnu::always_inline]] inline void body_kinematics(const Q& q, const Qd& qd,
+/// The kinematics loads read, Eqs. (1.1), (1.4)-(1.5): the mass properties, r_oc, rdot_oc,
+/// omega and, when with_rotation, R = R0 R(theta) with the chart base R0, from `body` (in the
+/// scalar of k), its coordinates q and its rates in the state form Form: qd = qdot (omega = G
+/// thetadot, Eq. 1.5) or qd = [v; omega] (omega read as is, no G). A body held at a fixed point
+/// has q = theta and qd = thetadot or omega: r_oc is its fixed point and rdot_oc = 0. Forced
+/// inline: GCC 12 left it out of line in the right-hand side, which cost 35% of an offset
+/// Euler-parameter right-hand side (150 -> 202 ns; 151 ns inlined).
+template <StateForm Form, class Body, class Q, class Qd, class S>
+[[gnu::always_inline]] inline void body_kinematics(const Body& body, const Q& q, const Qd& qd,
                                                    const Matrix3<double>& base, bool with_rotation,
                                                    BodyKinematics<S, Body::reference>& k) {
   using P = typename Body::Param;
   const typename P::template Coords<S> th = q.template tail<Body::n_theta>();
-  k.position = q.template head<3>();
-  k.velocity = qd.template head<3>();
+  k.mass_properties = &body.mass_properties();
+  if constexpr (Body::fixed) {
+    k.position = body.fixed_point();
+    k.velocity.setZero();
+  } else {
+    k.position = q.template head<3>();
+    k.velocity = qd.template head<3>();
+  }
   if constexpr (Form == StateForm::quasi_velocities) {
     k.omega = qd.template tail<3>();
   } else {
@@ -76,7 +84,8 @@ Vector<typename JBody::Scalar, JBody::nq> body_accelerations(
 }
 
 /// The rate of body's quasi-velocity block x = [r_oc; theta; v; omega] (RigidBody::quasi_rates):
-/// [v; P::thetadot(theta, omega); a_c; alpha], for the wrench w and the kinematics k at x.
+/// [v; P::thetadot(theta, omega); a_c; alpha], for the wrench w and the kinematics k at x (held at
+/// a fixed point: x = [theta; omega], its rate [P::thetadot(theta, omega); alpha]).
 ///
 /// Euler parameters with `stabilize` (Adams, which cannot project): pdot = 1/2 L(p)^T omega is
 /// tangent to every sphere |p| = const (p.L(p)^T omega = 0 for any p), so |p| is kept in exact
@@ -107,7 +116,7 @@ Vector<typename JBody::Scalar, JBody::nx> body_quasi_rates(const JBody& body,
       if (detail::value(g2) > 0) {
         g = sqrt(g2);
       }
-      xd.template segment<4>(3) -= (S(0.5) * g * (p.squaredNorm() - S(1))) * p;
+      xd.template segment<4>(JBody::n_r) -= (S(0.5) * g * (p.squaredNorm() - S(1))) * p;
     }
   }
   return xd;
