@@ -192,7 +192,11 @@ template <class SceneT, class MakeIntegrator> class MpiEnsemble {
       invalid = e.what();
     }
     // Maxima of x and of ~x: equal on every rank iff x is. The last entry: any rank invalid.
-    const std::uint64_t n = runs, b = per_gather, m = times.size();
+    std::uint64_t m = 0;  // the number of output times, of any range Ensemble accepts
+    for ([[maybe_unused]] const auto& t : times) {
+      ++m;
+    }
+    const std::uint64_t n = runs, b = per_gather;
     std::uint64_t mine[7] = {n, ~n, b, ~b, m, ~m, invalid.empty() ? 0u : 1u}, all[7];
     detail::mpi_check(MPI_Allreduce(mine, all, 7, MPI_UINT64_T, MPI_MAX, comm_), "MPI_Allreduce");
     if (!invalid.empty()) {
