@@ -7,6 +7,8 @@
 //    evenly, fewer runs than ranks and none, on 1 and 2 threads per rank;
 //  - failing runs (initial(i) throws, the observer throws) reported at rank 0 with their index
 //    and message, whichever rank ran them, the other runs' results kept and bitwise equal;
+//  - mpi_integrate_variants (a scene per run: dispersed inertia) bitwise equal to
+//    integrate_variants on one process, a failing scene reported with its index;
 //  - MpiEnsemble::fold in blocks bitwise equal to Ensemble::fold and to fold_runs over the
 //    one-process results in run order (a non-associative floating-point sum), errors included;
 //  - misuse: no MPI (made before MPI_Init), bad times, block 0 and run counts that differ between
@@ -34,6 +36,7 @@
 #include "tumble/body/mass_properties.hpp"
 #include "tumble/body/rigid_body.hpp"
 #include "tumble/ensemble/ensemble.hpp"
+#include "tumble/ensemble/variants.hpp"
 #include "tumble/integrate/explicit_integrator.hpp"
 #include "tumble/orientation/modified_rodrigues.hpp"
 #include "tumble/scene/observables.hpp"
@@ -192,6 +195,52 @@ TEST_CASE("mpi: failing runs reach rank 0 with their index and message, the othe
         CHECK(same(got[i].value(), want[i].value()));
       }
     }
+  }
+}
+
+TEST_CASE("mpi: per-run scenes over the ranks equal integrate_variants to the bit",
+          "[ensemble][mpi]") {
+  // Run i's scene: the inertia dispersed by up to 2 % (I_z kept below I_x + I_y); run 10's
+  // scene cannot be built (on the last rank when there are 2).
+  const auto make_scene = [](std::size_t i) {
+    if (i == 10) {
+      throw std::invalid_argument("no scene for run 10");
+    }
+    const double x = static_cast<double>(i);
+    const double ix = 1.0 + 0.02 * std::sin(x), iy = 2.0 + 0.04 * std::cos(x);
+    const Vector3d inertia(ix, iy, (ix + iy) * (1.0 - 0.02 * std::abs(std::sin(2.0 * x))));
+    SceneT scene;
+    scene.add(Body(tumble::MassProperties<double>::about_centroid(1.0, inertia.asDiagonal())),
+              {.omega = kOmega});
+    return scene;
+  };
+  const auto observe = [](Final& f, std::size_t, double, const SceneState& s, const SceneT& sc) {
+    const tumble::BodyId<Body> b{0, 0};
+    Eigen::Map<Eigen::Matrix3d>(f.attitude.data()) = tumble::rotation(sc, b, s);
+    Eigen::Map<Vector3d>(f.omega.data()) = tumble::omega(sc, b, s);
+    ++f.outputs;
+  };
+  const std::size_t runs = 13;
+  const auto got = tumble::mpi_integrate_variants<Final>(runs, make_scene, make, 0.0, kTimes,
+                                                         observe, {.threads = 2});
+  if (rank() == 0) {
+    const auto want = tumble::integrate_variants<Final>(runs, make_scene, make, 0.0, kTimes,
+                                                        observe, {.threads = 2});
+    REQUIRE(got.size() == runs);
+    for (std::size_t i = 0; i < runs; ++i) {
+      INFO("run " << i);
+      if (i == 10) {
+        REQUIRE(got[i].failed());
+        CHECK(got[i].error().run == 10);
+        CHECK(got[i].error().message == "no scene for run 10");
+      } else {
+        REQUIRE(got[i].ok());
+        CHECK(got[i].value().outputs == 3);
+        CHECK(same(got[i].value(), want[i].value()));
+      }
+    }
+  } else {
+    CHECK(got.empty());
   }
 }
 
