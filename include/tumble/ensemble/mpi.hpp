@@ -283,8 +283,8 @@ template <class SceneT, class MakeIntegrator> class MpiEnsemble {
   template <class R, class Initial, class Times, class Observer>
   std::vector<RunOutcome<R>> integrate(std::size_t runs, Initial&& initial, double t0,
                                        const Times& times, Observer&& observe) const {
-    detail::mpi_agree<R>(comm_, runs, std::max<std::size_t>(runs, 1), t0,
-                         times);  // one gather of all the runs
+    // One gather of all the runs: runs (at least 1) results at once.
+    detail::mpi_agree<R>(comm_, runs, std::max<std::size_t>(runs, 1), t0, times);
     RunPool<Slot> pool(local_.options());
     return run_block<R>(pool, 0, runs, initial, t0, times, observe);
   }
