@@ -1,7 +1,8 @@
 # Install rules and the CMake package: find_package(tumble CONFIG) then provides tumble::tumble
 # and, when tumble was installed with CVODE support and SUNDIALS is found again on the consumer's
 # machine, tumble::cvode (component `cvode`); likewise tumble::odeint (component `odeint`, Boost
-# headers >= 1.74) and tumble::ensemble (component `ensemble`, oneTBB). Included from the top-level CMakeLists.txt when
+# headers >= 1.74), tumble::ensemble (component `ensemble`, oneTBB) and tumble::mpi (component
+# `mpi`, tumble::ensemble and MPI). Included from the top-level CMakeLists.txt when
 # TUMBLE_INSTALL is on (the default only when tumble is the top-level project).
 #
 # Layout under the prefix:
@@ -53,6 +54,16 @@ if(TARGET tumble_ensemble)
   install(EXPORT tumbleEnsembleTargets NAMESPACE tumble:: DESTINATION "${TUMBLE_INSTALL_CMAKEDIR}")
 else()
   set(TUMBLE_INSTALLED_ENSEMBLE OFF)
+endif()
+
+# tumble::mpi likewise: its MPI::MPI_CXX link is BUILD_INTERFACE-only, and the config adds it
+# again after finding MPI on the consumer's machine (and the component ensemble it builds on).
+if(TARGET tumble_mpi)
+  set(TUMBLE_INSTALLED_MPI ON)
+  install(TARGETS tumble_mpi EXPORT tumbleMpiTargets)
+  install(EXPORT tumbleMpiTargets NAMESPACE tumble:: DESTINATION "${TUMBLE_INSTALL_CMAKEDIR}")
+else()
+  set(TUMBLE_INSTALLED_MPI OFF)
 endif()
 
 configure_package_config_file(

@@ -46,6 +46,8 @@
 
 namespace tumble {
 
+template <class SceneT, class MakeIntegrator> class MpiEnsemble;
+
 /// One scene, many runs. MakeIntegrator: make(const SceneT&, double t0, const SceneState& s0)
 /// returns an integrator of the scene starting at (t0, s0).
 template <class SceneT, class MakeIntegrator> class Ensemble {
@@ -120,6 +122,9 @@ template <class SceneT, class MakeIntegrator> class Ensemble {
   [[nodiscard]] const EnsembleOptions& options() const { return options_; }
 
  private:
+  // The same runs over MPI ranks (mpi.hpp), each rank on this class's threads and runs.
+  template <class, class> friend class MpiEnsemble;
+
   using Slot = std::optional<Integrator>;  ///< a thread's integrator, made on its first run
 
   /// Run i on the thread's integrator: reset to (t0, initial(i)), or made there on the thread's

@@ -20,6 +20,27 @@
 
 namespace tumble {
 
+namespace detail {
+
+/// Run i of integrate_variants: its scene, a new integrator of it, the observations; its
+/// outcome (shared with mpi_integrate_variants, mpi.hpp).
+template <class R, class MakeScene, class MakeIntegrator, class Times, class Observer>
+RunOutcome<R> variant_run(std::size_t i, MakeScene& make_scene, MakeIntegrator& make_integrator,
+                          double t0, const Times& times, Observer& observe) {
+  using SceneT = std::remove_cvref_t<std::invoke_result_t<MakeScene&, std::size_t>>;
+  using Integrator = std::remove_cvref_t<
+      std::invoke_result_t<MakeIntegrator&, const SceneT&, double, const SceneState&>>;
+  static_assert(EnsembleIntegrator<Integrator>,
+                "the factory must return an integrator with advance(t) and reset(t, state)");
+  return guarded_run<R>(i, [&] {
+    const SceneT scene = make_scene(i);
+    Integrator integrator = make_integrator(scene, t0, scene.initial_state());
+    return observe_run<R>(scene, integrator, i, times, observe);
+  });
+}
+
+}  // namespace detail
+
 /// Runs 0, ..., runs-1: run i builds its scene, scene = make_scene(i) (a Scene, by value, its
 /// initial state the run's), integrates it with make_integrator(scene, t0,
 /// scene.initial_state()) to each of `times`, and calls observe(R& result, std::size_t run,
@@ -32,20 +53,11 @@ std::vector<RunOutcome<R>> integrate_variants(std::size_t runs, MakeScene&& make
                                               MakeIntegrator&& make_integrator, double t0,
                                               const Times& times, Observer&& observe,
                                               const EnsembleOptions& options = {}) {
-  using SceneT = std::remove_cvref_t<std::invoke_result_t<MakeScene&, std::size_t>>;
-  using Integrator = std::remove_cvref_t<
-      std::invoke_result_t<MakeIntegrator&, const SceneT&, double, const SceneState&>>;
-  static_assert(EnsembleIntegrator<Integrator>,
-                "the factory must return an integrator with advance(t) and reset(t, state)");
   detail::check_output_times(t0, times);
   struct NoWorker {};
   std::vector<RunOutcome<R>> out(runs);
   for_each_run<NoWorker>(runs, options, [&](NoWorker&, std::size_t i) {
-    out[i] = detail::guarded_run<R>(i, [&] {
-      const SceneT scene = make_scene(i);
-      Integrator integrator = make_integrator(scene, t0, scene.initial_state());
-      return detail::observe_run<R>(scene, integrator, i, times, observe);
-    });
+    out[i] = detail::variant_run<R>(i, make_scene, make_integrator, t0, times, observe);
   });
   return out;
 }
