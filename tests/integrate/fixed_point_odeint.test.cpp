@@ -30,9 +30,11 @@ OdeintOptions odeint_options(OdeintMethod method, double tol) {
 
 template <class P, StateForm Form, int N = Eigen::Dynamic> void check_odeint() {
   const double tol = 1e-10;
-  for (const auto& [method, name] : {std::pair{OdeintMethod::fehlberg78, "Fehlberg78"},
-                                     std::pair{OdeintMethod::dopri5, "Dopri5"}}) {
-    tumble::test::check_top<P, Form>(name, tol, [&](const auto& scene) {
+  // A plain pair, not a structured binding: Clang 14 cannot capture bindings in a lambda.
+  for (const auto& m : {std::pair{OdeintMethod::fehlberg78, "Fehlberg78"},
+                        std::pair{OdeintMethod::dopri5, "Dopri5"}}) {
+    const OdeintMethod method = m.first;
+    tumble::test::check_top<P, Form>(m.second, tol, [&](const auto& scene) {
       return OdeintIntegrator<std::remove_cvref_t<decltype(scene)>, N>(scene, 0.0,
                                                                        odeint_options(method, tol));
     });
