@@ -311,9 +311,10 @@ struct Study {
   /// thread's first integrator, cancels in the difference of n and 2 n runs).
   void heap() {
     constexpr std::size_t n = 32;
+    constexpr long runs = static_cast<long>(n);
     try {
-      result.allocations_short = (allocations(2 * n, kEnd / 10) - allocations(n, kEnd / 10)) / n;
-      result.allocations_long = (allocations(2 * n, kEnd) - allocations(n, kEnd)) / n;
+      result.allocations_short = (allocations(2 * n, kEnd / 10) - allocations(n, kEnd / 10)) / runs;
+      result.allocations_long = (allocations(2 * n, kEnd) - allocations(n, kEnd)) / runs;
       const SceneState s0 = initial(0);
       reset_allocation_count();
       set_allocation_counting(true);
