@@ -146,6 +146,18 @@ bool reset_peak() {
   return f.good();
 }
 
+/// A row of the table, not yet timed.
+EnsembleRow make_row(std::string what, std::string label, int threads, int ranks,
+                     std::size_t runs) {
+  EnsembleRow row;
+  row.what = std::move(what);
+  row.label = std::move(label);
+  row.threads = threads;
+  row.ranks = ranks;
+  row.runs = runs;
+  return row;
+}
+
 /// What the study shares between its measurements: the scene, the runs' inputs, the factory.
 struct Study {
   const EnsemblePlan& plan;
@@ -174,11 +186,9 @@ struct Study {
 
   /// Ensemble::integrate of plan.runs runs on `threads` threads.
   void threads(int n) {
-    EnsembleRow row{
-        .what = "threads",
-        .label = "Ensemble::integrate, " + std::to_string(n) + (n == 1 ? " thread" : " threads"),
-        .threads = n,
-        .runs = plan.runs};
+    EnsembleRow row = make_row(
+        "threads", "Ensemble::integrate, " + std::to_string(n) + (n == 1 ? " thread" : " threads"),
+        n, 1, plan.runs);
     const Ensemble e(t.scene, make, {.threads = n});
     const auto start = [this](std::size_t i) { return initial(i); };
     double sum = 0;
@@ -195,10 +205,10 @@ struct Study {
 
   /// A serial loop of the same runs: one integrator reset per run, or a new one per run.
   void serial(bool reuse) {
-    EnsembleRow row{.what = reuse ? "serial-reset" : "serial-new",
-                    .label = reuse ? "serial loop, one integrator reset per run"
-                                   : "serial loop, a new integrator per run",
-                    .runs = plan.runs};
+    EnsembleRow row = make_row(reuse ? "serial-reset" : "serial-new",
+                               reuse ? "serial loop, one integrator reset per run"
+                                     : "serial loop, a new integrator per run",
+                               1, 1, plan.runs);
     const KeepAngle observe = keep();
     double sum = 0;
     time_reps(row, plan.reps, [&] {
@@ -228,11 +238,10 @@ struct Study {
 
   /// plan.runs runs over `ranks` MPI processes (tumble_bench_mpi), one thread each.
   void mpi(int ranks, const std::filesystem::path& out) {
-    EnsembleRow row{.what = "mpi",
-                    .label = "MpiEnsemble::integrate, " + std::to_string(ranks) +
-                             (ranks == 1 ? " rank" : " ranks"),
-                    .ranks = ranks,
-                    .runs = plan.runs};
+    EnsembleRow row = make_row(
+        "mpi",
+        "MpiEnsemble::integrate, " + std::to_string(ranks) + (ranks == 1 ? " rank" : " ranks"), 1,
+        ranks, plan.runs);
     const std::filesystem::path log = out / ("ensemble_mpi_np" + std::to_string(ranks) + ".txt");
     const std::string args = "--runs " + std::to_string(plan.runs) + " --reps " +
                              std::to_string(plan.reps) + " --tol " + fmt("%.17g", result.tol);
@@ -267,8 +276,8 @@ struct Study {
 
   /// Ensemble::fold of n runs on 2 threads, timed once, with the growth of the peak RSS.
   void fold(std::size_t n) {
-    EnsembleRow row{
-        .what = "fold", .label = "Ensemble::fold, 2 threads", .threads = 2, .runs = n, .reps = 1};
+    EnsembleRow row = make_row("fold", "Ensemble::fold, 2 threads", 2, 1, n);
+    row.reps = 1;
     const Ensemble e(t.scene, make, {.threads = 2});
     const auto start = [this](std::size_t i) { return initial(i); };
     const bool reset = reset_peak();
@@ -368,13 +377,11 @@ EnsembleResult run_ensemble(const EnsemblePlan& plan, const std::filesystem::pat
   study.fold(10 * small);
   if (!timed) {
     const EnsembleRow& last = result.rows.back();
-    EnsembleRow row{.what = "fold",
-                    .label = "Ensemble::fold, 2 threads (extrapolated)",
-                    .threads = 2,
-                    .runs = plan.large,
-                    .extrapolated = true,
-                    .ok = last.ok,
-                    .note = "from the rate of " + std::to_string(last.runs) + " runs"};
+    EnsembleRow row =
+        make_row("fold", "Ensemble::fold, 2 threads (extrapolated)", 2, 1, plan.large);
+    row.extrapolated = true;
+    row.ok = last.ok;
+    row.note = "from the rate of " + std::to_string(last.runs) + " runs";
     row.seconds = static_cast<double>(plan.large) / last.rate();
     result.rows.push_back(std::move(row));
   }

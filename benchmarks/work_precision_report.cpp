@@ -497,7 +497,8 @@ std::string ensemble_table(const EnsembleResult& r, const EnsemblePlan& plan) {
     << "; per run within 1.2x of a serial loop: " << verdict(t1 && reset, vs_reset <= 1.2)
     << ";\n    " << plan.large << " runs to " << sci(plan.target_error)
     << " in < 10 s on 2 threads: "
-    << verdict(large != nullptr, large && large->seconds < 10.0 && r.sample_error <= 1e-6)
+    << verdict(large != nullptr,
+               large && large->seconds < 10.0 && r.sample_error <= plan.target_error)
     << (large
             ? " (" + duration(large->seconds) + (large->extrapolated ? ", extrapolated" : "") + ")"
             : std::string())
