@@ -386,7 +386,14 @@ struct EnsembleRow {
   int reps = 0;
   double seconds = std::numeric_limits<double>::quiet_NaN();  ///< median, wall clock
   double best = std::numeric_limits<double>::quiet_NaN();     ///< fastest repetition
-  bool extrapolated = false;                                  ///< from a measured rate, not timed
+  /// The cores the measurement had: the process's CPU time (all its threads; MPI: all ranks)
+  /// over the wall time, summed over the repetitions. Below the threads or ranks asked for, the
+  /// machine was busy with something else.
+  double cores = std::numeric_limits<double>::quiet_NaN();
+  /// The process's CPU time per run (s): the cost of a run without the time spent waiting for a
+  /// core, comparable between measurements when the machine is busy.
+  double cpu_per_run = std::numeric_limits<double>::quiet_NaN();
+  bool extrapolated = false;  ///< from a measured rate, not timed
   bool ok = true;
   std::string note;  ///< why it failed or what it means
   [[nodiscard]] double per_run() const { return seconds / static_cast<double>(runs); }

@@ -60,17 +60,17 @@ void write_scaling_csv(const std::filesystem::path& path, const std::vector<Scal
 void write_ensemble_csv(const std::filesystem::path& path, const EnsembleResult& r) {
   std::ofstream f(path);
   f << "measurement,label,threads,ranks,runs,reps,median_s,best_s,per_run_s,runs_per_s,"
-       "extrapolated,ok,note\n";
+       "cores,cpu_per_run_s,extrapolated,ok,note\n";
   for (const EnsembleRow& x : r.rows) {
     f << x.what << ',' << csv_quote(x.label) << ',' << x.threads << ',' << x.ranks << ',' << x.runs
       << ',' << x.reps << ',' << num(x.seconds) << ',' << num(x.best) << ',' << num(x.per_run())
-      << ',' << num(x.rate()) << ',' << (x.extrapolated ? 1 : 0) << ',' << (x.ok ? 1 : 0) << ','
-      << csv_quote(x.note) << '\n';
+      << ',' << num(x.rate()) << ',' << num(x.cores) << ',' << num(x.cpu_per_run) << ','
+      << (x.extrapolated ? 1 : 0) << ',' << (x.ok ? 1 : 0) << ',' << csv_quote(x.note) << '\n';
   }
   // The rest as name,value rows under the same columns: the name in `measurement`, the value in
   // `note`.
   const auto value = [&](const std::string& name, const std::string& v) {
-    f << name << ",,,,,,,,,,,1," << csv_quote(v) << '\n';
+    f << name << ",,,,,,,,,,,,,1," << csv_quote(v) << '\n';
   };
   value("tolerance", num(r.tol));
   value("nominal_attitude_error_rad", num(r.nominal_error));

@@ -35,6 +35,8 @@
 #include <utility>
 #include <vector>
 
+#include <time.h>
+
 #include "support/torque_free.hpp"
 #include "tumble/ensemble/ensemble.hpp"
 #include "work_precision_driver.hpp"
@@ -98,15 +100,25 @@ double checked_sum(const std::vector<RunOutcome<double>>& out) {
   return fold_runs(out, 0.0, [](double a, std::size_t, double v) { return a + v; });
 }
 
+/// The CPU time of this process, all its threads, s.
+double process_cpu() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 /// Times body() `reps` times on the wall clock into the row (median, best); a throw marks the
 /// row failed.
 template <class Body> void time_reps(EnsembleRow& row, int reps, Body&& body) {
   std::vector<double> s;
+  double cpu = 0;
   try {
     for (int k = 0; k < reps; ++k) {
+      const double cpu0 = process_cpu();
       const Stopwatch watch;
       body();
       s.push_back(watch.wall());
+      cpu += process_cpu() - cpu0;
     }
   } catch (const std::exception& e) {
     row.ok = false;
@@ -117,6 +129,12 @@ template <class Body> void time_reps(EnsembleRow& row, int reps, Body&& body) {
     row.ok = false;
     return;
   }
+  double wall = 0;
+  for (const double x : s) {
+    wall += x;
+  }
+  row.cores = cpu / wall;
+  row.cpu_per_run = cpu / static_cast<double>(s.size() * row.runs);
   std::sort(s.begin(), s.end());
   const std::size_t n = s.size();
   row.seconds = n % 2 == 1 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
@@ -247,12 +265,14 @@ struct Study {
                              std::to_string(plan.reps) + " --tol " + fmt("%.17g", result.tol);
     const std::string why = run_ensemble_mpi(ranks, args, log);
     std::vector<double> s;
-    double sum = 0;
+    double sum = 0, cpu = 0;
     bool have_sum = false;
     std::ifstream f(log);
     for (std::string line; std::getline(f, line);) {
       if (line.rfind("seconds ", 0) == 0) {
         s.push_back(std::strtod(line.c_str() + 8, nullptr));
+      } else if (line.rfind("cpu ", 0) == 0) {
+        cpu += std::strtod(line.c_str() + 4, nullptr);
       } else if (line.rfind("sum ", 0) == 0) {
         sum = std::strtod(line.c_str() + 4, nullptr);  // a hexadecimal float, exact
         have_sum = true;
@@ -264,6 +284,12 @@ struct Study {
       row.note = why.empty() ? "no times in " + log.string() : why;
       result.mpi_note = row.note;
     } else {
+      double wall = 0;
+      for (const double x : s) {
+        wall += x;
+      }
+      row.cores = cpu / wall;
+      row.cpu_per_run = cpu / static_cast<double>(s.size() * row.runs);
       std::sort(s.begin(), s.end());
       const std::size_t n = s.size();
       row.reps = static_cast<int>(n);
@@ -283,10 +309,14 @@ struct Study {
     const bool reset = reset_peak();
     const long before = status_kb("VmRSS");
     try {
+      const double cpu0 = process_cpu();
       const Stopwatch watch;
       const FoldedRuns<double> folded = e.fold<double>(
           n, start, 0.0, times, keep(), 0.0, [](double a, std::size_t, double v) { return a + v; });
       row.seconds = row.best = watch.wall();
+      const double cpu = process_cpu() - cpu0;
+      row.cores = cpu / row.seconds;
+      row.cpu_per_run = cpu / static_cast<double>(n);
       if (!folded.errors.empty()) {
         row.ok = false;
         row.note = std::to_string(folded.errors.size()) + " runs failed";

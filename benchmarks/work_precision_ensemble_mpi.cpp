@@ -5,6 +5,8 @@
 //                  from a barrier to the results of every run gathered there (MPI's start-up
 //                  and the first integrator's construction are outside it or in it alike for
 //                  every repetition, the median is taken);
+//   cpu C          one line per repetition: the CPU time of every rank in it, summed (how many
+//                  cores the ranks had: below their number, the machine was busy);
 //   sum X          the runs' values summed in run order, as a hexadecimal float (exact), which
 //                  tumble_bench compares with its threads' sum: the same runs, bit for bit.
 // Usage: tumble_bench_mpi --runs N --reps R --tol T [--threads K]   (threads per rank, default 1)
@@ -20,6 +22,7 @@
 #include <vector>
 
 #include <mpi.h>
+#include <time.h>
 
 #include "tumble/ensemble/mpi.hpp"
 #include "work_precision_ensemble.hpp"
@@ -27,6 +30,13 @@
 namespace {
 
 using namespace tumble::bench::ensemble;
+
+/// The CPU time of this process, all its threads, s.
+double process_cpu() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 struct Args {
   std::size_t runs = 2000;
@@ -67,10 +77,14 @@ int run(const Args& a) {
   int status = 0;
   for (int r = 0; r < a.reps; ++r) {
     MPI_Barrier(ensemble.communicator());
+    const double cpu0 = process_cpu();
     const auto start = std::chrono::steady_clock::now();
     const auto out = ensemble.integrate<double>(a.runs, initial, 0.0, times, KeepAngle{&t});
     const double s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double cpu = process_cpu() - cpu0;
+    double cpu_all = 0;  // the CPU time of every rank in this repetition
+    MPI_Reduce(&cpu, &cpu_all, 1, MPI_DOUBLE, MPI_SUM, 0, ensemble.communicator());
     if (ensemble.rank() == 0) {
       const auto failed = tumble::failures(out);
       if (!failed.empty()) {
@@ -78,7 +92,7 @@ int run(const Args& a) {
                     failed.front().message.c_str());
         status = 1;
       }
-      std::printf("seconds %.9g\n", s);
+      std::printf("seconds %.9g\ncpu %.9g\n", s, cpu_all);
       if (r + 1 == a.reps) {
         const double sum =
             tumble::fold_runs(out, 0.0, [](double acc, std::size_t, double v) { return acc + v; });

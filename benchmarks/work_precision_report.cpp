@@ -427,13 +427,15 @@ std::string ensemble_table(const EnsembleResult& r, const EnsemblePlan& plan) {
     << " dispersed runs, against the exact solution; " << r.nominal_steps << " steps, "
     << r.nominal_rhs << " rhs per run\n";
   s << "  " << pad("runs of one scene", 44) << lpad("runs", 7) << lpad("reps", 5)
-    << lpad("median", 10) << lpad("per run", 10) << lpad("runs/s", 9) << "\n";
+    << lpad("median", 10) << lpad("per run", 10) << lpad("runs/s", 9) << lpad("cores", 7)
+    << lpad("CPU/run", 10) << "\n";
   for (const EnsembleRow& x : r.rows) {
     s << "  " << pad(x.label, 44) << lpad(std::to_string(x.runs), 7)
       << lpad(x.extrapolated ? "-" : std::to_string(x.reps), 5);
     if (x.ok) {
       s << lpad(duration(x.seconds), 10) << lpad(duration(x.per_run()), 10)
-        << lpad(fmt("%.0f", x.rate()), 9);
+        << lpad(fmt("%.0f", x.rate()), 9) << lpad(x.extrapolated ? "-" : fmt("%.2f", x.cores), 7)
+        << lpad(x.extrapolated ? "-" : duration(x.cpu_per_run), 10);
       if (!x.note.empty()) {
         s << "  (" << x.note << ")";
       }
@@ -454,6 +456,9 @@ std::string ensemble_table(const EnsembleResult& r, const EnsemblePlan& plan) {
       large = &x;
     }
   }
+  s << "  (cores: the CPU time the process had (MPI: all ranks) over the wall time; below the "
+       "threads\n   or ranks asked for, the machine was busy with something else. CPU/run: that "
+       "CPU time per run,\n   the cost of a run without the waits for a core)\n";
   const auto ratio = [](const EnsembleRow* a, const EnsembleRow* b) {
     return a && b ? a->seconds / b->seconds : std::numeric_limits<double>::quiet_NaN();
   };
@@ -465,8 +470,13 @@ std::string ensemble_table(const EnsembleResult& r, const EnsemblePlan& plan) {
                                     : " (results DIFFER from the threads')")
            : " (" + r.mpi_note + ")")
     << "\n";
+  const auto cpu_ratio = [](const EnsembleRow* a, const EnsembleRow* b) {
+    return a && b ? a->cpu_per_run / b->cpu_per_run : std::numeric_limits<double>::quiet_NaN();
+  };
   s << "  per run, the 1-thread ensemble against a serial loop: " << fmt("%.2fx", vs_reset)
-    << " (one integrator reset per run), " << fmt("%.2fx", vs_new) << " (a new one per run)\n";
+    << " (one integrator reset per run), " << fmt("%.2fx", vs_new)
+    << " (a new one per run);\n    in CPU time " << fmt("%.2fx", cpu_ratio(t1, reset)) << " and "
+    << fmt("%.2fx", cpu_ratio(t1, fresh)) << "\n";
   s << "  memory: " << r.result_bytes
     << " B kept per run by integrate (RunOutcome<double>); peak RSS growth during fold\n"
     << "    (block 4096):";
