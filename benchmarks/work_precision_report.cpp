@@ -474,8 +474,8 @@ std::string ensemble_table(const EnsembleResult& r, const EnsemblePlan& plan) {
     return a && b ? a->cpu_per_run / b->cpu_per_run : std::numeric_limits<double>::quiet_NaN();
   };
   s << "  per run, the 1-thread ensemble against a serial loop: " << fmt("%.2fx", vs_reset)
-    << " (one integrator reset per run), " << fmt("%.2fx", vs_new)
-    << " (a new one per run);\n    in CPU time " << fmt("%.2fx", cpu_ratio(t1, reset)) << " and "
+    << " (one integrator reset\n    per run), " << fmt("%.2fx", vs_new)
+    << " (a new one per run); in CPU time " << fmt("%.2fx", cpu_ratio(t1, reset)) << " and "
     << fmt("%.2fx", cpu_ratio(t1, fresh)) << "\n";
   s << "  memory: " << r.result_bytes
     << " B kept per run by integrate (RunOutcome<double>); peak RSS growth during fold\n"
@@ -513,19 +513,24 @@ std::string ensemble_table(const EnsembleResult& r, const EnsemblePlan& plan) {
     }
     return verdict(true, up >= 1.8);
   };
-  s << "  targets: threads 2/1 >= 1.8x: " << speed_up(t1, t2, threads_up)
-    << "; MPI ranks 2/1 >= 1.8x: " << speed_up(m1, m2, ranks_up)
-    << "; per run within 1.2x of a serial loop: " << verdict(t1 && reset, vs_reset <= 1.2)
-    << ";\n    " << plan.large << " runs to " << sci(plan.target_error)
-    << " in < 10 s on 2 threads: "
-    << verdict(large != nullptr,
-               large && large->seconds < 10.0 && r.sample_error <= plan.target_error)
-    << (large
-            ? " (" + duration(large->seconds) + (large->extrapolated ? ", extrapolated" : "") + ")"
-            : std::string())
-    << "; nothing allocated per step: "
-    << verdict(per_step, r.allocations_short == r.allocations_long)
-    << "; memory with the results kept, not N: " << verdict(peaks, flat) << "\n";
+  const auto target = [&](const std::string& what, const std::string& v) {
+    s << "    " << pad(what, 46) << v << "\n";
+  };
+  s << "  targets:\n";
+  target("threads, 2 against 1, >= 1.8x", speed_up(t1, t2, threads_up));
+  target("MPI ranks, 2 against 1, >= 1.8x", speed_up(m1, m2, ranks_up));
+  target("per run within 1.2x of a serial loop",
+         verdict(t1 && reset, vs_reset <= 1.2) + " (" + fmt("%.2fx", vs_reset) + ")");
+  target(
+      std::to_string(plan.large) + " runs to " + sci(plan.target_error) + " in < 10 s, 2 threads",
+      verdict(large != nullptr,
+              large && large->seconds < 10.0 && r.sample_error <= plan.target_error) +
+          (large ? " (" + duration(large->seconds) + (large->extrapolated ? ", extrapolated" : "") +
+                       ")"
+                 : std::string()));
+  target("nothing allocated per step",
+         verdict(per_step, r.allocations_short == r.allocations_long));
+  target("memory grows with the results kept, not N", verdict(peaks, flat));
   return s.str();
 }
 
