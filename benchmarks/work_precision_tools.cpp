@@ -119,8 +119,11 @@ std::string run_ensemble_mpi(int ranks, const std::string& args, const std::file
   if (!ensemble_mpi_built()) {
     return "tumble_bench_mpi was not built";
   }
-  // The flags are a list that the shell splits (from CMake's MPIEXEC_PREFLAGS and ours).
-  const std::string cmd = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 " +
+  // The flags are a list that the shell splits (from CMake's MPIEXEC_PREFLAGS and ours). An MPI
+  // that cannot start its processes may wait forever: coreutils' timeout, where there is one,
+  // stops it after 10 minutes and the main job goes on without the MPI rows.
+  const std::string cmd = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                          "$(command -v timeout >/dev/null 2>&1 && echo timeout 600) " +
                           shell_quote(TUMBLE_BENCH_MPIEXEC) + " " +
                           TUMBLE_BENCH_MPIEXEC_NUMPROC_FLAG + " " + std::to_string(ranks) + " " +
                           TUMBLE_BENCH_MPIEXEC_PREFLAGS + " " + shell_quote(TUMBLE_BENCH_MPI) +
