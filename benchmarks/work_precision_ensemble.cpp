@@ -19,6 +19,10 @@
 //    set (VmHWM, reset through /proc/self/clear_refs) during folds of N and 10 N runs;
 //  - operator new calls per run for runs of 5 s and of 50 s (ten times the steps): equal counts
 //    mean nothing is allocated per step.
+// Beside each time, the process's CPU time (all its threads; MPI: all ranks) over the wall time,
+// the cores the measurement had: on a busy machine a 2-thread run may get one core, and its
+// speed-up then measures the machine (the report says so); and the CPU time per run, which
+// waiting for a core does not inflate.
 
 #include "work_precision_ensemble.hpp"
 
