@@ -1,4 +1,4 @@
-# tumble_bench, the README's main job: per-call costs, work precision and scaling:
+# tumble_bench, the README's main job: per-call costs, work precision, scaling and ensembles:
 #   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j2 --target tumble_bench
 #   ./build/benchmarks/tumble_bench            # --full for the complete sweep, --help for options
 # Included by benchmarks/CMakeLists.txt, in its scope: it uses the Pinocchio detection there
@@ -75,6 +75,46 @@ else()
   message(STATUS "tumble_bench: without tumble::odeint (OdeintIntegrator's runs are skipped)")
 endif()
 target_include_directories(tumble_bench PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+
+# (d) the ensemble study: Ensemble (oneTBB) with OdeintIntegrator, when both exist; and, when
+# tumble::mpi exists, the same runs over MPI processes in a program of their own,
+# tumble_bench_mpi, which tumble_bench launches under mpiexec with 1 and 2 processes (the flags
+# as for the MPI tests, tests/CMakeLists.txt). work_precision_alloc.cpp replaces the global
+# operator new of tumble_bench to count the allocations per run (off except around those runs).
+if(TARGET tumble::ensemble AND TARGET tumble::odeint)
+  target_sources(tumble_bench PRIVATE
+    work_precision_ensemble.cpp   # the ensemble study: threads, serial loops, memory
+    work_precision_alloc.cpp)     # operator new counted
+  target_link_libraries(tumble_bench PRIVATE tumble::ensemble)
+  target_compile_definitions(tumble_bench PRIVATE TUMBLE_BENCH_HAVE_ENSEMBLE=1)
+  if(TARGET tumble::mpi)
+    add_executable(tumble_bench_mpi work_precision_ensemble_mpi.cpp)
+    target_link_libraries(tumble_bench_mpi PRIVATE tumble::mpi tumble::odeint
+                          tumble_project_options)
+    target_include_directories(tumble_bench_mpi PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+    if(TUMBLE_BENCH_NATIVE)
+      target_compile_options(tumble_bench_mpi PRIVATE -march=native)
+    endif()
+    add_dependencies(tumble_bench tumble_bench_mpi)
+    set(_tumble_bench_mpiexec_flags ${MPIEXEC_PREFLAGS})
+    execute_process(COMMAND ${MPIEXEC_EXECUTABLE} --version OUTPUT_VARIABLE _tumble_mpiexec_version
+                    ERROR_QUIET)
+    if(_tumble_mpiexec_version MATCHES "Open MPI|OpenRTE")
+      list(APPEND _tumble_bench_mpiexec_flags --oversubscribe --bind-to none)
+    endif()
+    list(JOIN _tumble_bench_mpiexec_flags " " _tumble_bench_mpiexec_flags)
+    target_compile_definitions(tumble_bench PRIVATE
+      "TUMBLE_BENCH_MPI=\"$<TARGET_FILE:tumble_bench_mpi>\""
+      "TUMBLE_BENCH_MPIEXEC=\"${MPIEXEC_EXECUTABLE}\""
+      "TUMBLE_BENCH_MPIEXEC_NUMPROC_FLAG=\"${MPIEXEC_NUMPROC_FLAG}\""
+      "TUMBLE_BENCH_MPIEXEC_PREFLAGS=\"${_tumble_bench_mpiexec_flags}\"")
+    message(STATUS "tumble_bench: the ensemble study runs over MPI ranks too (tumble_bench_mpi)")
+  else()
+    message(STATUS "tumble_bench: without tumble::mpi (the ensemble study's MPI runs are skipped)")
+  endif()
+else()
+  message(STATUS "tumble_bench: without tumble::ensemble or tumble::odeint (no ensemble study)")
+endif()
 
 string(TOUPPER "${CMAKE_BUILD_TYPE}" _tumble_wp_bt)
 string(STRIP "${CMAKE_CXX_FLAGS} ${CMAKE_CXX_FLAGS_${_tumble_wp_bt}}" _tumble_wp_flags)

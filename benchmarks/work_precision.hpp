@@ -28,6 +28,8 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstddef>
+#include <filesystem>
 #include <functional>
 #include <limits>
 #include <string>
@@ -356,5 +358,87 @@ struct ScalingProgress {
 std::vector<ScalingRow> run_scaling(const ScalingPlan& plan, const ScalingProgress& progress);
 /// Counts the measurements run_scaling will make (for the progress counter).
 int scaling_measurements(const ScalingPlan& plan);
+
+// ---- the ensemble study (work_precision_ensemble.cpp) ----------------------------------------
+
+/// What the ensemble study measures and how much (ensemble_plan, work_precision_sweep.cpp).
+struct EnsemblePlan {
+  std::size_t runs = 2000;  ///< runs per timed ensemble: threads, serial loops, MPI ranks
+  int reps = 3;             ///< timed repetitions of each, the median is reported
+  /// The large ensemble timed once on 2 threads (Ensemble::fold); its tenth is the smaller fold
+  /// of the memory measurement.
+  std::size_t large = 100000;
+  /// The large ensemble is timed only when the 2-thread rate promises it within this many
+  /// seconds; otherwise its time is extrapolated from that rate (and labelled so).
+  double large_budget = 30.0;
+  double target_error = 1e-6;  ///< rad: the tolerance is the loosest that reaches it
+  int error_sample = 16;       ///< dispersed runs whose error is measured too (and the nominal)
+  bool mpi = true;  ///< the same runs over 1 and 2 MPI ranks, when tumble_bench_mpi exists
+};
+
+/// One timed measurement of the ensemble study.
+struct EnsembleRow {
+  std::string what;   ///< "threads", "serial-reset", "serial-new", "mpi", "fold"
+  std::string label;  ///< one line for the table
+  int threads = 1;
+  int ranks = 1;  ///< MPI processes (1 for the measurements inside tumble_bench)
+  std::size_t runs = 0;
+  int reps = 0;
+  double seconds = std::numeric_limits<double>::quiet_NaN();  ///< median, wall clock
+  double best = std::numeric_limits<double>::quiet_NaN();     ///< fastest repetition
+  /// The cores the measurement had: the process's CPU time (all its threads; MPI: all ranks)
+  /// over the wall time, summed over the repetitions. Below the threads or ranks asked for, the
+  /// machine was busy with something else.
+  double cores = std::numeric_limits<double>::quiet_NaN();
+  /// The process's CPU time per run (s): the cost of a run without the time spent waiting for a
+  /// core, comparable between measurements when the machine is busy.
+  double cpu_per_run = std::numeric_limits<double>::quiet_NaN();
+  bool extrapolated = false;  ///< from a measured rate, not timed
+  bool ok = true;
+  std::string note;  ///< why it failed or what it means
+  [[nodiscard]] double per_run() const { return seconds / static_cast<double>(runs); }
+  [[nodiscard]] double rate() const { return static_cast<double>(runs) / seconds; }
+};
+
+/// Everything the study found.
+struct EnsembleResult {
+  double tol = std::numeric_limits<double>::quiet_NaN();            ///< rtol = atol of the runs
+  double nominal_error = std::numeric_limits<double>::quiet_NaN();  ///< rad, at 50 s
+  double sample_error = std::numeric_limits<double>::quiet_NaN();   ///< rad, max over the sample
+  long nominal_steps = 0;
+  long nominal_rhs = 0;
+  std::vector<EnsembleRow> rows;
+  /// Memory: bytes kept per run by Ensemble::integrate (a RunOutcome<double>), and the growth
+  /// of the peak resident set (VmHWM over VmRSS before, kB) during Ensemble::fold of `runs`.
+  std::size_t result_bytes = 0;
+  struct Peak {
+    std::size_t runs = 0;
+    long kilobytes = -1;  ///< -1: not measured
+  };
+  std::vector<Peak> fold_peaks;
+  std::string memory_note;  ///< how the peaks were measured, or why not
+  /// Allocations (operator new calls) per run of a 1-thread ensemble, for runs of kEnd / 10 and
+  /// of kEnd (ten times the steps), and the steps per run of each; -1: not counted.
+  long allocations_short = -1;
+  long allocations_long = -1;
+  long steps_short = 0;
+  long steps_long = 0;
+  long allocations_new = -1;  ///< the same, to make one integrator
+  bool mpi_same = false;      ///< MPI results bitwise those of the threads (their sum)
+  std::string mpi_note;       ///< why there are no MPI rows, or ""
+};
+
+/// Calls of the global operator new (every form) while counting is on, in any thread: the
+/// program's replacements (work_precision_alloc.cpp, linked with the ensemble study). Eigen's and
+/// C code's allocations go through malloc and are not seen.
+long allocation_count() noexcept;
+void reset_allocation_count() noexcept;
+void set_allocation_counting(bool on) noexcept;
+
+/// Runs the ensemble study; `step` is called after each measurement.
+EnsembleResult run_ensemble(const EnsemblePlan& plan, const std::filesystem::path& out,
+                            const std::function<void()>& step);
+/// The number of measurements run_ensemble makes (for the progress counter).
+int ensemble_measurements(const EnsemblePlan& plan);
 
 }  // namespace tumble::bench

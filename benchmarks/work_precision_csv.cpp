@@ -3,6 +3,9 @@
 //   work_precision_<problem>.csv  every run of the sweep: setting, both clocks, errors, invariants'
 //                                 drift, CVODE's counters, chart switches
 //   scaling.csv                   cost per right-hand side and per BDF step against N
+//   ensemble.csv                  the ensemble study: each timed ensemble (threads, ranks, runs,
+//                                 median and best time, runs/s), then its tolerance and errors,
+//                                 memory and allocations as named values
 //   problems.csv                  each problem's title and how its reference was obtained
 // plot_work_precision.py draws the PNG diagrams from them.
 
@@ -52,6 +55,40 @@ void write_scaling_csv(const std::filesystem::path& path, const std::vector<Scal
       << r.calls << ',' << r.rhs_evals << ',' << r.jacobian_evals << ',' << r.linear_iterations
       << ',' << (r.ok ? 1 : 0) << ',' << csv_quote(r.error) << '\n';
   }
+}
+
+void write_ensemble_csv(const std::filesystem::path& path, const EnsembleResult& r) {
+  std::ofstream f(path);
+  f << "measurement,label,threads,ranks,runs,reps,median_s,best_s,per_run_s,runs_per_s,"
+       "cores,cpu_per_run_s,extrapolated,ok,note\n";
+  for (const EnsembleRow& x : r.rows) {
+    f << x.what << ',' << csv_quote(x.label) << ',' << x.threads << ',' << x.ranks << ',' << x.runs
+      << ',' << x.reps << ',' << num(x.seconds) << ',' << num(x.best) << ',' << num(x.per_run())
+      << ',' << num(x.rate()) << ',' << num(x.cores) << ',' << num(x.cpu_per_run) << ','
+      << (x.extrapolated ? 1 : 0) << ',' << (x.ok ? 1 : 0) << ',' << csv_quote(x.note) << '\n';
+  }
+  // The rest as name,value rows under the same columns: the name in `measurement`, the value in
+  // `note`.
+  const auto value = [&](const std::string& name, const std::string& v) {
+    f << name << ",,,,,,,,,,,,,1," << csv_quote(v) << '\n';
+  };
+  value("tolerance", num(r.tol));
+  value("nominal_attitude_error_rad", num(r.nominal_error));
+  value("sample_max_attitude_error_rad", num(r.sample_error));
+  value("nominal_steps", std::to_string(r.nominal_steps));
+  value("nominal_rhs_evals", std::to_string(r.nominal_rhs));
+  value("result_bytes_per_run", std::to_string(r.result_bytes));
+  for (const EnsembleResult::Peak& p : r.fold_peaks) {
+    value("fold_peak_rss_growth_kb_" + std::to_string(p.runs), std::to_string(p.kilobytes));
+  }
+  value("operator_new_per_run_short", std::to_string(r.allocations_short));
+  value("operator_new_per_run_long", std::to_string(r.allocations_long));
+  value("steps_short", std::to_string(r.steps_short));
+  value("steps_long", std::to_string(r.steps_long));
+  value("operator_new_per_integrator", std::to_string(r.allocations_new));
+  value("mpi_results_bitwise_equal", r.mpi_same ? "1" : "0");
+  value("mpi_note", r.mpi_note);
+  value("memory_note", r.memory_note);
 }
 
 void write_problems_csv(const std::filesystem::path& path, const std::vector<Problem>& problems) {

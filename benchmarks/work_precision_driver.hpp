@@ -5,7 +5,7 @@
 //   sweep      which runs to make, and making them     (work_precision_sweep.cpp)
 //   report     the terminal tables                     (work_precision_report.cpp)
 //   csv        the CSV files                           (work_precision_csv.cpp)
-//   tools      tumble_micro and the plot script        (work_precision_tools.cpp)
+//   tools      tumble_micro, the plot script, tumble_bench_mpi (work_precision_tools.cpp)
 // and work_precision_main.cpp runs the phases in order.
 
 #include <filesystem>
@@ -37,7 +37,10 @@ struct Options {
   std::set<std::string> problems;    // empty: all
   std::vector<std::string> methods;  // empty: all; else method labels containing one of these
   std::vector<double> tolerances;    // empty: the default sweep
+  bool work_precision = true;        // the work-precision sweep (b)
   bool scaling = true;
+  bool ensemble = true;  // the ensemble study (d), when tumble::ensemble was found
+  bool mpi = true;       // its runs over MPI ranks, when tumble_bench_mpi was built
   bool plots = true;
   bool micro = true;
   bool exact_jacobian = true;  // tumble with BDF: the scene's Jacobian, or difference quotients
@@ -84,6 +87,8 @@ Row run_job(const Job& j, const Options& o, const Timing& timing);
 void make_stiff_reference(Problem& p);
 /// The bodies counts and repetitions of the scaling study.
 ScalingPlan scaling_plan(const Options& o);
+/// The run counts and repetitions of the ensemble study.
+EnsemblePlan ensemble_plan(const Options& o);
 
 // ---- report ----------------------------------------------------------------------------------
 
@@ -103,11 +108,15 @@ std::string problem_table_header();
 std::string problem_table_footer(TimeBase clock);
 /// (c) cost per right-hand side and per BDF step against the number of bodies, with slopes.
 std::string scaling_table(const std::vector<ScalingRow>& rows);
+/// (d) runs per second of an ensemble against threads and processes, the per-run cost against
+/// serial loops, memory and allocations per run, and the targets they are held to.
+std::string ensemble_table(const EnsembleResult& r, const EnsemblePlan& plan);
 
 // ---- csv -------------------------------------------------------------------------------------
 
 void write_runs_csv(const std::filesystem::path& path, const std::vector<Row>& rows);
 void write_scaling_csv(const std::filesystem::path& path, const std::vector<ScalingRow>& rows);
+void write_ensemble_csv(const std::filesystem::path& path, const EnsembleResult& r);
 void write_problems_csv(const std::filesystem::path& path, const std::vector<Problem>& problems);
 /// Reads "benchmark,cpu_ns" (summarize_micro.py --csv); empty when the file is not there.
 MicroTimes read_micro_csv(const std::filesystem::path& path);
@@ -122,5 +131,10 @@ std::optional<MicroTimes> run_micro(const Options& o, const std::filesystem::pat
 /// Draws the PNG diagrams from the CSVs in `out` (plot_work_precision.py); returns "" on success,
 /// else why not.
 std::string draw_plots(const Options& o, const std::filesystem::path& out);
+/// Whether tumble_bench_mpi (the ensemble study over MPI ranks) was built with tumble_bench.
+bool ensemble_mpi_built();
+/// Runs tumble_bench_mpi under mpiexec with `ranks` processes and the arguments `args`, both its
+/// output streams into `log`; returns "" on success, else why not.
+std::string run_ensemble_mpi(int ranks, const std::string& args, const std::filesystem::path& log);
 
 }  // namespace tumble::bench

@@ -1,11 +1,14 @@
 // tumble_bench: the README's main job. What tumble's rigid-body dynamics cost and the accuracy
-// they buy, in three parts, each a phase of this file:
+// they buy, in four parts, each a phase of this file:
 //   (a) the per-call cost of the core assembly (tumble_micro's short list, Google Benchmark);
 //   (b) work precision: for each problem with a known answer (work_precision_problems.cpp),
 //       tumble with every parameterization of the run and CVODE's Adams and BDF, swept over the
 //       tolerance, beside the hand-written CVODE floor, fixed-step RK4 and (when installed)
 //       Pinocchio's aba in CVODE (work_precision_sweep.cpp);
-//   (c) the scaling study, a chain of N bodies (work_precision_scaling.cpp).
+//   (c) the scaling study, a chain of N bodies (work_precision_scaling.cpp);
+//   (d) the ensemble study, many runs of the tumbling body across threads and MPI processes
+//       (work_precision_ensemble.cpp; built when tumble::ensemble exists,
+//       TUMBLE_BENCH_HAVE_ENSEMBLE).
 // It prints a header, one progress line per phase (stderr), then the tables
 // (work_precision_report.cpp) and where the files are: CSVs (work_precision_csv.cpp), PNG
 // diagrams and the raw micro-benchmark output (work_precision_tools.cpp). `--help` for options.
@@ -92,16 +95,22 @@ int run(const Options& o) {
   const std::vector<Method> list = methods(o);
   std::vector<Problem> problems = make_problems(o.outputs, o.full);
   std::erase_if(problems, [&](const Problem& p) {
-    return !o.problems.empty() && !o.problems.contains(p.id);
+    return !o.work_precision || (!o.problems.empty() && !o.problems.contains(p.id));
   });
   const std::vector<Job> jobs = plan_jobs(o, problems, list);
   const ScalingPlan plan = scaling_plan(o);
+  [[maybe_unused]] const EnsemblePlan ensembles = ensemble_plan(o);
+#if TUMBLE_BENCH_HAVE_ENSEMBLE
+  const bool run_ensemble_study = o.ensemble;
+#else
+  const bool run_ensemble_study = false;
+#endif
 
   const std::string header = header_text(o, out, static_cast<int>(jobs.size()));
   std::printf("%s\n", header.c_str());
   std::fflush(stdout);
   Progress progress((o.micro ? 1 : 0) + static_cast<int>(problems.size()) + (o.scaling ? 1 : 0) +
-                    (o.plots ? 1 : 0));
+                    (run_ensemble_study ? 1 : 0) + (o.plots ? 1 : 0));
 
   // (a) per-call costs
   std::string tables;
@@ -163,6 +172,22 @@ int run(const Options& o) {
     tables += scaling_table(rows);
   }
 
+  // (d) ensembles
+#if TUMBLE_BENCH_HAVE_ENSEMBLE
+  if (run_ensemble_study) {
+    progress.begin("ensembles, threads and MPI ranks", ensemble_measurements(ensembles));
+    const EnsembleResult result = run_ensemble(ensembles, out, [&] { progress.step(); });
+    progress.end();
+    write_ensemble_csv(out / "ensemble.csv", result);
+    tables += "\n";
+    tables += ensemble_table(result, ensembles);
+  }
+#else
+  if (o.ensemble) {
+    tables += "\n(d) ensembles: not built (tumble::ensemble needs oneTBB and tumble::odeint)\n";
+  }
+#endif
+
   std::string plots = "not drawn (--no-plots)";
   if (o.plots) {
     progress.begin("plots (matplotlib)", 0);
@@ -183,7 +208,8 @@ int run(const Options& o) {
   text += "\nfinished in " + fmt("%.0f s", seconds_since(start)) + "; files in " + out.string();
   text += "/\n  summary.txt            this report\n"
           "  *.csv                  every run and counter: work_precision_<problem>.csv, "
-          "scaling.csv\n"
+          "scaling.csv,\n"
+          "                         ensemble.csv (ensemble_mpi_np*.txt: the MPI runs' output)\n"
           "  *.png                  " +
           plots + "\n";
   if (o.micro) {

@@ -17,7 +17,7 @@ void usage() {
   std::printf(
       "tumble_bench: what tumble costs and the accuracy it buys: per-call cost of the core "
       "assembly,\nrun time against error on problems with exact answers, cost per step against the "
-      "number of bodies.\n\n"
+      "number of bodies,\nruns per second of an ensemble against threads and MPI ranks.\n\n"
       "  --full            every parameterization (16), and the scaling study up to N = 10,000\n"
       "                    (default: the quick run, 6 parameterizations, N up to 1,000)\n"
       "  --out DIR         where to write CSV, PNG, summary.txt and the raw micro-benchmark "
@@ -31,6 +31,11 @@ void usage() {
       "                    strings (e.g. 'EulerParameters adams,hand-written,RK4')\n"
       "  --tolerances LIST comma-separated CVODE tolerances (default: 1e-3,1e-4,...,1e-13)\n"
       "  --no-scaling      skip the scaling study\n"
+      "  --no-ensemble     skip the ensemble study (runs per second against threads and MPI "
+      "ranks)\n"
+      "  --no-mpi          the ensemble study without its MPI runs (mpiexec)\n"
+      "  --ensemble-only   only the ensemble study: no micro-benchmarks, work precision, scaling,\n"
+      "                    plots\n"
       "  --clock wall|cpu  the clock of the report: wall (steady_clock, the default) or the\n"
       "                    thread's CPU time, which leaves out waiting for a core on a busy\n"
       "                    machine (the CSVs always have both)\n"
@@ -97,6 +102,13 @@ std::optional<Options> parse_options(int argc, char** argv) {
       }
     } else if (a == "--no-scaling") {
       o.scaling = false;
+    } else if (a == "--no-ensemble") {
+      o.ensemble = false;
+    } else if (a == "--no-mpi") {
+      o.mpi = false;
+    } else if (a == "--ensemble-only") {
+      o.micro = o.work_precision = o.scaling = o.plots = false;
+      o.ensemble = true;
     } else if (a == "--clock") {
       const std::string c = value();
       if (c == "wall") {

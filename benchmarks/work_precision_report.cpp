@@ -6,10 +6,13 @@
 //               1e-9 and 1e-11 rad, read off the method's tolerance sweep (time_at below), and the
 //               best error the sweep reached;
 //   (c)         the cost of a right-hand side and of a BDF step against the number of bodies, with
-//               the log-log slope.
+//               the log-log slope;
+//   (d)         runs per second of an ensemble against threads and MPI processes, the per-run cost
+//               against serial loops, memory and allocations per run, against their targets.
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -171,15 +174,18 @@ std::string header_text(const Options& o, const std::filesystem::path& out, int 
   std::string load = first_line("/proc/loadavg", "");
   load = load.substr(0, load.find(' ', load.find(' ', load.find(' ') + 1) + 1));
   // Calibrated on a 2-core machine: about 0.06 s per run of the sweep on average (best of 3),
-  // 10 s of micro-benchmarks, 10 s (quick) or 40 s (--full) of scaling, 5 s of plots.
+  // 10 s of micro-benchmarks, 10 s (quick) or 40 s (--full) of scaling, 15 s (quick) or 30 s
+  // (--full) of ensembles, 5 s of plots.
   const double estimate = 0.06 * runs + (o.micro ? 10.0 : 0.0) +
-                          (o.scaling ? (o.full ? 40.0 : 10.0) : 0.0) + (o.plots ? 5.0 : 0.0);
+                          (o.scaling ? (o.full ? 40.0 : 10.0) : 0.0) +
+                          (o.ensemble ? (o.full ? 30.0 : 15.0) : 0.0) + (o.plots ? 5.0 : 0.0);
   std::ostringstream s;
   s << "tumble_bench (" << (o.full ? "full" : "quick")
     << " run): what tumble's rigid-body dynamics cost and the accuracy they buy\n"
     << "  measures  (a) ns per call of the core assembly, (b) run time to reach an attitude error "
        "on\n"
-    << "            problems with exact answers, (c) cost per step against the number of bodies\n"
+    << "            problems with exact answers, (c) cost per step against the number of bodies,\n"
+    << "            (d) runs per second of an ensemble against threads and MPI processes\n"
     << "  machine   " << first_line("/proc/cpuinfo", "model name") << ", "
     << std::thread::hardware_concurrency() << " hardware threads, load " << load << "\n"
     << "  build     " << compiler() << ", " << TUMBLE_BENCH_BUILD_TYPE << " ("
@@ -386,6 +392,145 @@ std::string scaling_table(const std::vector<ScalingRow>& rows) {
   s << "\n  (slope: log-log fit of the cost per call against N over N >= 100 (dense: every N it "
        "ran);\n   1 = linear; 'DQ J': CVODE's difference-quotient Jacobian, else the scene's exact "
        "one)\n";
+  return s.str();
+}
+
+namespace {
+
+/// "met" or "missed", and how.
+std::string verdict(bool measured, bool met) {
+  return !measured ? "not measured" : met ? "met" : "missed";
+}
+
+const EnsembleRow* find_row(const EnsembleResult& r, const std::string& what, int threads,
+                            int ranks) {
+  for (const EnsembleRow& x : r.rows) {
+    if (x.what == what && x.threads == threads && x.ranks == ranks && x.ok) {
+      return &x;
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::string ensemble_table(const EnsembleResult& r, const EnsemblePlan& plan) {
+  std::ostringstream s;
+  s << "(d) an ensemble of the tumbling body: I = diag(1, 2, 3) kg m^2, omega0 = (0.1, 2, 0.05) "
+       "rad/s\n"
+       "    dispersed by up to 1 % per component, 50 s per run; MRP quasi-velocity form,\n"
+       "    OdeintIntegrator<Scene, 12> Fehlberg 7(8) at rtol = atol = "
+    << sci(r.tol) << " (the loosest of a half-decade\n"
+    << "    ladder with attitude errors <= " << sci(plan.target_error) << " rad): error at 50 s "
+    << sci(r.nominal_error) << " rad (nominal run),\n"
+    << "    at most " << sci(r.sample_error) << " over " << plan.error_sample
+    << " dispersed runs, against the exact solution; " << r.nominal_steps << " steps, "
+    << r.nominal_rhs << " rhs per run\n";
+  s << "  " << pad("runs of one scene", 44) << lpad("runs", 7) << lpad("reps", 5)
+    << lpad("median", 10) << lpad("per run", 10) << lpad("runs/s", 9) << lpad("cores", 7)
+    << lpad("CPU/run", 10) << "\n";
+  for (const EnsembleRow& x : r.rows) {
+    s << "  " << pad(x.label, 44) << lpad(std::to_string(x.runs), 7)
+      << lpad(x.extrapolated ? "-" : std::to_string(x.reps), 5);
+    if (x.ok) {
+      s << lpad(duration(x.seconds), 10) << lpad(duration(x.per_run()), 10)
+        << lpad(fmt("%.0f", x.rate()), 9) << lpad(x.extrapolated ? "-" : fmt("%.2f", x.cores), 7)
+        << lpad(x.extrapolated ? "-" : duration(x.cpu_per_run), 10);
+      if (!x.note.empty()) {
+        s << "  (" << x.note << ")";
+      }
+    } else {
+      s << "  FAILED: " << x.note;
+    }
+    s << "\n";
+  }
+  const EnsembleRow* t1 = find_row(r, "threads", 1, 1);
+  const EnsembleRow* t2 = find_row(r, "threads", 2, 1);
+  const EnsembleRow* reset = find_row(r, "serial-reset", 1, 1);
+  const EnsembleRow* fresh = find_row(r, "serial-new", 1, 1);
+  const EnsembleRow* m1 = find_row(r, "mpi", 1, 1);
+  const EnsembleRow* m2 = find_row(r, "mpi", 1, 2);
+  const EnsembleRow* large = nullptr;
+  for (const EnsembleRow& x : r.rows) {
+    if (x.what == "fold" && x.runs == plan.large && x.ok) {
+      large = &x;
+    }
+  }
+  s << "  (cores: the CPU time the process had (MPI: all ranks) over the wall time; below the "
+       "threads\n   or ranks asked for, the machine was busy with something else. CPU/run: that "
+       "CPU time per run,\n   the cost of a run without the waits for a core)\n";
+  const auto ratio = [](const EnsembleRow* a, const EnsembleRow* b) {
+    return a && b ? a->seconds / b->seconds : std::numeric_limits<double>::quiet_NaN();
+  };
+  const double threads_up = ratio(t1, t2), ranks_up = ratio(m1, m2);
+  const double vs_reset = ratio(t1, reset), vs_new = ratio(t1, fresh);
+  s << "  speed-up, 2 against 1: threads " << fmt("%.2fx", threads_up) << ", MPI ranks "
+    << (m2 ? fmt("%.2fx", ranks_up) : "-")
+    << (m2 ? std::string(r.mpi_same ? " (results bitwise the threads')"
+                                    : " (results DIFFER from the threads')")
+           : " (" + r.mpi_note + ")")
+    << "\n";
+  const auto cpu_ratio = [](const EnsembleRow* a, const EnsembleRow* b) {
+    return a && b ? a->cpu_per_run / b->cpu_per_run : std::numeric_limits<double>::quiet_NaN();
+  };
+  s << "  per run, the 1-thread ensemble against a serial loop: " << fmt("%.2fx", vs_reset)
+    << " (one integrator reset\n    per run), " << fmt("%.2fx", vs_new)
+    << " (a new one per run); in CPU time " << fmt("%.2fx", cpu_ratio(t1, reset)) << " and "
+    << fmt("%.2fx", cpu_ratio(t1, fresh)) << "\n";
+  s << "  memory: " << r.result_bytes
+    << " B kept per run by integrate (RunOutcome<double>); peak RSS growth during fold\n"
+    << "    (block 4096):";
+  for (std::size_t k = 0; k < r.fold_peaks.size(); ++k) {
+    const EnsembleResult::Peak& p = r.fold_peaks[k];
+    s << (k == 0 ? " " : ", ")
+      << (p.kilobytes >= 0 ? std::to_string(p.kilobytes) + " kB" : std::string("-")) << " for "
+      << p.runs << " runs";
+  }
+  s << (r.memory_note.empty() ? "" : " (" + r.memory_note + ")") << "\n";
+  s << "  heap: operator new calls per run " << r.allocations_short << " at 5 s (" << r.steps_short
+    << " steps), " << r.allocations_long << " at 50 s (" << r.steps_long << " steps); "
+    << r.allocations_new << " to make an integrator\n";
+
+  // The targets the ensembles are held to.
+  const bool per_step = r.allocations_short >= 0 && r.allocations_long >= 0;
+  long peak_small = -1, peak_large = -1;
+  if (r.fold_peaks.size() == 2) {
+    peak_small = r.fold_peaks[0].kilobytes;
+    peak_large = r.fold_peaks[1].kilobytes;
+  }
+  const bool peaks = peak_small >= 0 && peak_large >= 0;
+  // Flat: the 10 N fold's peak growth within 1 MB (or 50 %) of the N fold's; the results of
+  // 10^5 runs kept would be 10^5 x result_bytes.
+  const bool flat = peaks && std::abs(peak_large - peak_small) <= std::max(1024L, peak_small / 2);
+  // A speed-up says something about the ensemble only if the machine gave the 2-thread (2-rank)
+  // run about two cores; on a busy machine it measures the share it got.
+  const auto speed_up = [&](const EnsembleRow* one, const EnsembleRow* two, double up) {
+    if (!one || !two) {
+      return verdict(false, false);
+    }
+    if (!(two->cores >= 1.6)) {
+      return "not measured (the 2-way run had " + fmt("%.2f", two->cores) + " cores)";
+    }
+    return verdict(true, up >= 1.8);
+  };
+  const auto target = [&](const std::string& what, const std::string& v) {
+    s << "    " << pad(what, 46) << v << "\n";
+  };
+  s << "  targets:\n";
+  target("threads, 2 against 1, >= 1.8x", speed_up(t1, t2, threads_up));
+  target("MPI ranks, 2 against 1, >= 1.8x", speed_up(m1, m2, ranks_up));
+  target("per run within 1.2x of a serial loop",
+         verdict(t1 && reset, vs_reset <= 1.2) + " (" + fmt("%.2fx", vs_reset) + ")");
+  target(
+      std::to_string(plan.large) + " runs to " + sci(plan.target_error) + " in < 10 s, 2 threads",
+      verdict(large != nullptr,
+              large && large->seconds < 10.0 && r.sample_error <= plan.target_error) +
+          (large ? " (" + duration(large->seconds) + (large->extrapolated ? ", extrapolated" : "") +
+                       ")"
+                 : std::string()));
+  target("nothing allocated per step",
+         verdict(per_step, r.allocations_short == r.allocations_long));
+  target("memory grows with the results kept, not N", verdict(peaks, flat));
   return s.str();
 }
 

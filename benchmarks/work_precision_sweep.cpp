@@ -1,6 +1,6 @@
 // tumble_bench: the sweep. Which runs the work-precision study makes (every problem x method x
 // setting), how one is made and measured, the stiff top's reference integration, and the sizes
-// of the scaling study.
+// of the scaling and ensemble studies.
 //
 // The methods are the entries of the list in work_precision_methods.cpp (tumble per
 // parameterization, the hand-written floors, the peers, RK4). Adaptive methods sweep
@@ -139,6 +139,17 @@ ScalingPlan scaling_plan(const Options& o) {
   }
   plan.reps = o.reps;
   plan.base = o.clock;
+  return plan;
+}
+
+EnsemblePlan ensemble_plan(const Options& o) {
+  EnsemblePlan plan;
+  // Quick: 2,000 runs per timed ensemble (about 0.3 s per repetition on one thread) and the
+  // 10^5-run ensemble timed if it fits in 30 s; --full: 10,000 runs, and up to 120 s for it.
+  plan.runs = o.full ? 10000 : 2000;
+  plan.large_budget = o.full ? 120.0 : 30.0;
+  plan.reps = o.reps;
+  plan.mpi = o.mpi;
   return plan;
 }
 
