@@ -181,6 +181,12 @@ TEMPLATE_TEST_CASE("EulerParameters: G = 2 L(p), pdot = 1/2 p (x) (0, omega)",
     CHECK(max_abs(to_ld(pdot) - pdot_ref) <= kEval * eps<S>());
     CHECK(std::fabs(pl.dot(to_ld(pdot))) <= kEval * eps<S>());  // tangent: p.pdot = 0
     CHECK(max_abs(to_ld(Vector3<S>(P::G(p) * pdot)) - to_ld(w)) <= kEval * eps<S>());
+    // omega = G pdot as the hot path writes it out (P::omega, through angular_velocity), against
+    // the Hamilton product: omega = 2 vec(conj(p) (x) pdot) for |p| = 1.
+    const Vector4<LD> pc(pl(0), -pl(1), -pl(2), -pl(3));
+    const Vector3<LD> w_ref = LD(2) * hamilton<LD>(pc, to_ld(pdot)).template tail<3>();
+    CHECK(max_abs(to_ld(P::omega(p, pdot)) - w_ref) <= kEval * eps<S>());
+    CHECK(max_abs(to_ld(tumble::angular_velocity<P, S>(p, pdot)) - w_ref) <= kEval * eps<S>());
   }
 }
 

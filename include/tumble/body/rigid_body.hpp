@@ -138,7 +138,7 @@ class RigidBody {
   [[nodiscard]] static Matrix3<S> rotation(const Coords& q) { return P::rotation(theta(q)); }
   /// omega = G thetadot, body components (Eq. 1.5).
   [[nodiscard]] static Vector3<S> omega(const Coords& q, const Coords& qdot) {
-    return P::G(theta(q)) * qdot.template tail<n_theta>();
+    return angular_velocity<P, S>(theta(q), qdot.template tail<n_theta>());
   }
   /// qdot for a given velocity of the reference point (inertial) and omega (body): the inverse
   /// map of the parameterization. A fixed body has no velocity coordinates: `velocity` (zero) is
@@ -292,7 +292,7 @@ class RigidBody {
       k.velocity = qdot.template head<3>();
     }
     const Theta th = theta(q);
-    k.omega = P::G(th) * qdot.template tail<n_theta>();
+    k.omega = angular_velocity<P, S>(th, qdot.template tail<n_theta>());
     if constexpr (with_rotation || !at_centroid) {
       k.rotation = P::rotation(th);
     }
@@ -307,7 +307,7 @@ class RigidBody {
                                      const Wrench<S>& w) const {
     const Theta th = theta(q);
     const Theta thd = qdot.template tail<n_theta>();
-    const Vector3<S> om = P::G(th) * thd;
+    const Vector3<S> om = angular_velocity<P, S>(th, thd);
     return accelerations_impl(q, th, thd, om, w);
   }
 

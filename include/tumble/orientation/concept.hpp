@@ -62,6 +62,18 @@ concept Orientation = requires {
   { P::constraint(theta) } -> std::same_as<double>;
 });
 
+/// omega = G(theta) thetadot (Eq. 1.5), through P::omega(theta, thetadot) where the
+/// parameterization writes the product out (Euler parameters), else the product with G.
+template <Orientation P, class S>
+[[nodiscard]] Vector3<S> angular_velocity(const typename P::template Coords<S>& theta,
+                                          const typename P::template Coords<S>& thetadot) {
+  if constexpr (requires { P::omega(theta, thetadot); }) {
+    return P::omega(theta, thetadot);
+  } else {
+    return P::G(theta) * thetadot;
+  }
+}
+
 /// Convert the coordinates of one parameterization into another through the unit quaternion
 /// (exact up to rounding; no trigonometric round trip through a matrix).
 /// Usage: `auto g = convert<RodriguesParameters, EulerZYX>(angles);`

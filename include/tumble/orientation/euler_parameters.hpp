@@ -39,6 +39,23 @@ struct EulerParameters {
     return l;
   }
 
+  /// L(p) v for a 4-vector v, written out: the hot paths (omega = 2 L(p) pdot) then hold no
+  /// 3 x 4 matrix in memory (GCC 12 spilled the formed L(p) to the stack before the product).
+  template <class S, class V>
+  [[nodiscard]] static Vector3<S> L_times(const Coords<S>& p, const V& v) {
+    return Vector3<S>(-p(1) * v(0) + p(0) * v(1) + p(3) * v(2) - p(2) * v(3),
+                      -p(2) * v(0) - p(3) * v(1) + p(0) * v(2) + p(1) * v(3),
+                      -p(3) * v(0) + p(2) * v(1) - p(1) * v(2) + p(0) * v(3));
+  }
+
+  /// L(p)^T w for a 3-vector w, written out (see L_times).
+  template <class S, class W>
+  [[nodiscard]] static Coords<S> Lt_times(const Coords<S>& p, const W& w) {
+    return Coords<S>(
+        -p(1) * w(0) - p(2) * w(1) - p(3) * w(2), p(0) * w(0) - p(3) * w(1) + p(2) * w(2),
+        p(3) * w(0) + p(0) * w(1) - p(1) * w(2), -p(2) * w(0) + p(1) * w(1) + p(0) * w(2));
+  }
+
   /// R = (e0^2 - e.e) I + 2 e e^T + 2 e0 S(e)   (body -> inertial; Eq. 1.1).
   template <class S> [[nodiscard]] static Matrix3<S> rotation(const Coords<S>& p) {
     const S e0 = p(0), e1 = p(1), e2 = p(2), e3 = p(3);
@@ -57,6 +74,12 @@ struct EulerParameters {
     return S(2) * L(p);
   }
 
+  /// omega = G pdot = 2 L(p) pdot (Eq. 1.5), without forming G.
+  template <class S>
+  [[nodiscard]] static Vector3<S> omega(const Coords<S>& p, const Coords<S>& pdot) {
+    return S(2) * L_times(p, pdot);
+  }
+
   /// Gdot pdot = 2 L(pdot) pdot = 0 for every pdot (Eq. 1.10): callers that know the type skip
   /// it at compile time (see `gdot_vanishes`).
   template <class S>
@@ -68,7 +91,7 @@ struct EulerParameters {
   /// pdot = 1/2 L(p)^T omega: the rate tangent to |p| = 1 (p.pdot = 0).
   template <class S>
   [[nodiscard]] static Coords<S> thetadot(const Coords<S>& p, const Vector3<S>& omega) {
-    return S(0.5) * (L(p).transpose() * omega);
+    return S(0.5) * Lt_times(p, omega);
   }
 
   /// pddot = 1/2 L(p)^T alpha - |pdot|^2 p: the solution of the constrained system
@@ -77,7 +100,7 @@ struct EulerParameters {
   template <class S>
   [[nodiscard]] static Coords<S> thetaddot(const Coords<S>& p, const Coords<S>& pdot,
                                            const Vector3<S>& alpha) {
-    return S(0.5) * (L(p).transpose() * alpha) - pdot.squaredNorm() * p;
+    return S(0.5) * Lt_times(p, alpha) - pdot.squaredNorm() * p;
   }
 
   /// Shepperd's method (S. W. Shepperd, "Quaternion from rotation matrix", J. Guidance and

@@ -47,7 +47,7 @@ template <class Entry> Vector3<double> omega_of(const Entry& e, const SceneState
     return s.y.template segment<3>(e.rates + e.theta_at);
   } else {
     const typename Body::Theta thd = s.y.template segment<Body::n_theta>(e.rates + e.theta_at);
-    return Body::Param::G(theta_of(e, s)) * thd;
+    return angular_velocity<typename Body::Param, double>(theta_of(e, s), thd);
   }
 }
 /// r_oc: from the state, or the fixed point.

@@ -40,7 +40,7 @@ template <StateForm Form, class Body, class Q, class Qd, class S>
     k.omega = qd.template tail<3>();
   } else {
     const typename P::template Coords<S> thd = qd.template tail<Body::n_theta>();
-    k.omega = P::G(th) * thd;
+    k.omega = angular_velocity<P, S>(th, thd);
   }
   if (with_rotation) {
     k.rotation = P::rotation(th);
@@ -56,7 +56,7 @@ template <StateForm Form, class Body, class Q, class Qd, class S>
 /// so that a drift of |p| = 1 decays on the body's own time scale without adding stiffness (used
 /// with Adams, which cannot project; BDF projects instead).
 template <class JBody>
-Vector<typename JBody::Scalar, JBody::nq> body_accelerations(
+[[gnu::always_inline]] inline Vector<typename JBody::Scalar, JBody::nq> body_accelerations(
     const JBody& body, const typename JBody::Coords& q, const typename JBody::Coords& qd,
     const typename JBody::Kinematics& k, const Wrench<typename JBody::Scalar>& w,
     [[maybe_unused]] bool stabilize) {
@@ -97,12 +97,12 @@ Vector<typename JBody::Scalar, JBody::nq> body_accelerations(
 /// faster than the motion itself (no stiffness for Adams) and vanishes on the manifold (the
 /// physics is unchanged). A tumbling body has g > 0; at rest nothing moves and nothing drifts.
 /// With BDF the integrator projects instead (projection.hpp), and stabilize is false.
+/// Forced inline, as body_kinematics: GCC 12 called it out of line from the right-hand side, where
+/// it took a fifth of an explicit run's time (perf, Odeint Fehlberg 7(8) on one body).
 template <class JBody>
-Vector<typename JBody::Scalar, JBody::nx> body_quasi_rates(const JBody& body,
-                                                           const typename JBody::Coords& q,
-                                                           const typename JBody::Kinematics& k,
-                                                           const Wrench<typename JBody::Scalar>& w,
-                                                           [[maybe_unused]] bool stabilize) {
+[[gnu::always_inline]] inline Vector<typename JBody::Scalar, JBody::nx> body_quasi_rates(
+    const JBody& body, const typename JBody::Coords& q, const typename JBody::Kinematics& k,
+    const Wrench<typename JBody::Scalar>& w, [[maybe_unused]] bool stabilize) {
   using S = typename JBody::Scalar;
   typename JBody::QuasiCoords xd = body.quasi_rates(q, k, w);
   if constexpr (JBody::Param::has_constraint) {
