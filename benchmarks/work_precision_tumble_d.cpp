@@ -57,25 +57,33 @@ Run run_odeint_scene(const Problem& p, const MethodSetting& c, const Timing& tim
   return run;
 }
 
-template <class P, StateForm Form>
+template <class P, StateForm Form, Translation T>
 Run run_tumble_odeint(const Problem& p, const MethodSetting& c, const Timing& timing) {
-  return visit_problem_scene<P, Form>(p, [&]<class SceneT, class Body>(auto build) {
+  return visit_problem_scene<P, Form, T>(p, [&]<class SceneT, class Body>(auto build) {
     return run_odeint_scene<SceneT, Body>(p, c, timing, build);
   });
 }
 
-/// The entry "Odeint F78 EP quasi" (Fehlberg 7(8), Euler parameters, [q; v; omega]), ...
-template <class P, StateForm Form>
+bool torque_free(const Problem& p) {
+  return p.kind == ProblemKind::tumbling || p.kind == ProblemKind::minor_axis ||
+         p.kind == ProblemKind::major_axis || p.kind == ProblemKind::spinner;
+}
+
+/// The entry "Odeint F78 EP quasi" (Fehlberg 7(8), Euler parameters, [q; v; omega]), ...; with
+/// Translation::free, "... free": the torque-free problems with the body free (r and v in the
+/// state), to show what carrying them costs.
+template <class P, StateForm Form, Translation T = Translation::attitude_only>
 Method odeint_method(Scheme scheme, const std::string& set, bool quick) {
   const std::string stepper = scheme == Scheme::dopri5 ? "DP5" : "F78";
   const std::string form = Form == StateForm::quasi_velocities ? "quasi" : "[q; qd]";
-  return {.label = "Odeint " + stepper + " " + set + " " + form,
+  const bool free = T == Translation::free;
+  return {.label = "Odeint " + stepper + " " + set + " " + form + (free ? " free" : ""),
           .family = "tumble",
           .parameterization = std::string(P::name),
           .schemes = {scheme},
           .quick = quick,
-          .applies = nullptr,
-          .run = &run_tumble_odeint<P, Form>};
+          .applies = free ? &torque_free : nullptr,
+          .run = &run_tumble_odeint<P, Form, T>};
 }
 
 }  // namespace
@@ -86,6 +94,7 @@ void add_tumble_methods_d(std::vector<Method>& list) {
   constexpr StateForm quasi = StateForm::quasi_velocities;
   constexpr StateForm generalized = StateForm::generalized;
   list.push_back(odeint_method<EP, quasi>(Scheme::rkf78, "EP", true));
+  list.push_back(odeint_method<EP, quasi, Translation::free>(Scheme::rkf78, "EP", true));
   list.push_back(odeint_method<EP, quasi>(Scheme::dopri5, "EP", true));
   list.push_back(odeint_method<MRP, quasi>(Scheme::rkf78, "MRP", true));
   list.push_back(odeint_method<MRP, quasi>(Scheme::dopri5, "MRP", false));

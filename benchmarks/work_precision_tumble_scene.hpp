@@ -3,8 +3,12 @@
 // tumble scene (CVODE's SceneIntegrator, work_precision_tumble.hpp; Boost.Odeint's
 // OdeintIntegrator, work_precision_tumble_d.cpp).
 //
-// The scene is what a user would write for each problem: a body framed at its centroid
-// (ReferencePoint::centroid) with no loads for the torque-free problems; framed at a point off
+// The scene is what a user would write for each problem. For the torque-free problems, whose
+// questions are about attitude only: a body held at its centroid (ReferencePoint::fixed_point,
+// the fixed point at the centroid; state [theta; thetadot] or [theta; omega], 7 or 6 entries, as
+// the hand-written floors [p; omega]), or, with Translation::free, a free body framed at its
+// centroid (ReferencePoint::centroid, 13 or 12 entries: the same attitude, with r and v carried
+// along and integrated to no purpose). Framed at a point off
 // its centroid (ReferencePoint::offset) with UniformGravity for the thrown body; and with
 // UniformGravity and a SpringDamper from its reference point (the tip) to the inertial origin for
 // the stiff tops. The state form (StateForm: [q; qdot] or [q; v; omega]) is a template argument.
@@ -36,19 +40,33 @@ Sample scene_sample(const SceneT& scene, BodyId<Body> id, const SceneStateView& 
   return s;
 }
 
+/// How a torque-free body is modelled: held at its centroid (attitude only) or free.
+enum class Translation { attitude_only, free };
+
 /// Calls `go.template operator()<SceneT, Body>(build)` with the scene type of problem p for
 /// parameterization P in state form Form; `build(scene)` adds the body and its loads to an empty
 /// SceneT and returns the body's id. Returns what go returns (a Run).
-template <class P, StateForm Form, class Go> Run visit_problem_scene(const Problem& p, Go&& go) {
+template <class P, StateForm Form, Translation T = Translation::attitude_only, class Go>
+Run visit_problem_scene(const Problem& p, Go&& go) {
   switch (p.kind) {
     case ProblemKind::tumbling:
     case ProblemKind::minor_axis:
     case ProblemKind::major_axis:
     case ProblemKind::spinner: {
-      using Body = RigidBody<P>;
-      using SceneT = Scene<Bodies<Body>, Loads<>, Form>;
-      return go.template operator()<SceneT, Body>(
-          [&](SceneT& scene) { return scene.add(Body(mass_properties(p)), initial_state(p)); });
+      if constexpr (T == Translation::attitude_only) {
+        // The torque-free problems start at rest at the origin (work_precision_problems.cpp):
+        // the centroid stays there, and holding it there changes nothing of the attitude.
+        using Body = RigidBody<P, ReferencePoint::fixed_point>;
+        using SceneT = Scene<Bodies<Body>, Loads<>, Form>;
+        return go.template operator()<SceneT, Body>([&](SceneT& scene) {
+          return scene.add(Body(mass_properties(p), p.position0), initial_state(p));
+        });
+      } else {
+        using Body = RigidBody<P>;
+        using SceneT = Scene<Bodies<Body>, Loads<>, Form>;
+        return go.template operator()<SceneT, Body>(
+            [&](SceneT& scene) { return scene.add(Body(mass_properties(p)), initial_state(p)); });
+      }
     }
     case ProblemKind::gravity_offset: {
       using Body = RigidBody<P, ReferencePoint::offset>;
