@@ -36,6 +36,7 @@ add_executable(tumble_bench
   work_precision_floors_sundials.cpp  # methods: hand-written [p; omega] in CVODE, ARKODE F78
   work_precision_floors_odeint.cpp    # methods: hand-written [p; omega] in Boost.Odeint
   work_precision_pinocchio.cpp   # method: Pinocchio's aba in CVODE (when installed)
+  work_precision_mujoco.cpp      # method: MuJoCo's RK4 (when installed)
   work_precision_sweep.cpp       # which runs to make, and making them
   work_precision_scaling.cpp     # the scaling study (chain of N bodies)
   work_precision_report.cpp      # the terminal tables
@@ -134,6 +135,12 @@ target_compile_definitions(tumble_bench PRIVATE
   "TUMBLE_BENCH_BUILD_TYPE=\"${_tumble_wp_build_type}\""
   "TUMBLE_BENCH_CXX_FLAGS=\"${_tumble_wp_flags}\"")
 
+if(TUMBLE_BENCH_HAVE_MUJOCO AND TARGET tumble_bench_mujoco)
+  set_source_files_properties(work_precision_mujoco.cpp PROPERTIES
+    COMPILE_DEFINITIONS TUMBLE_BENCH_HAVE_MUJOCO=1)
+  target_link_libraries(tumble_bench PRIVATE tumble_bench_mujoco)
+  message(STATUS "tumble_bench: MuJoCo's RK4 is one of the references")
+endif()
 if(TUMBLE_BENCH_HAVE_PINOCCHIO AND TARGET tumble_bench_pinocchio)
   # Only the Pinocchio translation unit sees its headers (they take a while to compile).
   set_source_files_properties(work_precision_pinocchio.cpp PROPERTIES

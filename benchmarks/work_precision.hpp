@@ -319,6 +319,10 @@ bool pinocchio_available();
 std::string pinocchio_description();
 Run run_pinocchio(const Problem& p, const MethodSetting& c, const Timing& timing);
 
+/// MuJoCo's fixed-step RK4, mj_step (work_precision_mujoco.cpp), swept like run_rk4.
+bool mujoco_available();
+Run run_mujoco(const Problem& p, const MethodSetting& c, const Timing& timing);
+
 /// Whether a problem has no spring (the floors with a closed form of their own: no spring).
 inline bool closed_form_problem(const Problem& p) { return p.stiffness == 0; }
 

@@ -56,6 +56,13 @@ std::vector<Method> all_methods() {
                     .applies = &closed_form_problem,
                     .run = &run_pinocchio});
   }
+  if (mujoco_available()) {
+    list.push_back({.label = "MuJoCo RK4",
+                    .family = "peer",
+                    .schemes = {Scheme::rk4},
+                    .applies = &closed_form_problem,
+                    .run = &run_mujoco});
+  }
   list.push_back({.label = "RK4 fixed step (EP)",
                   .family = "rk4",
                   .schemes = {Scheme::rk4},
