@@ -122,7 +122,7 @@ TEST_CASE("SceneIntegrator: bad input", "[integrate][scene_integrator]") {
     REQUIRE_THROWS_AS(SceneIntegrator(scene, 0.0, y), std::invalid_argument);
     REQUIRE_THROWS_WITH(SceneIntegrator(scene, 0.0, y),
                         TUMBLE_CONTAINS("the state has 5 entries and 0 chart bases, but the "
-                                        "scene has size 14 and 1 bodies"));
+                                        "scene has size 13 and 1 bodies"));
   }
   SECTION("a state whose chart base is not a rotation") {
     scene.add(EP(tumbling_mass()));

@@ -125,7 +125,7 @@ TEST_CASE("reset() re-centers a chart the new state puts near its singularity",
   const Vector3d v = 5.0 * Vector3d(1, 2, 2).normalized();
   const Vector3d w(1, -1, 0.5);
   y.y.segment<3>(3) = v;
-  y.y.segment<3>(9) = tumble::RotationVector::thetadot(v, w);
+  tumble::set_velocity(scene, h, y, Vector3d::Zero(), w);  // omega, in the scene's state form
   y.base[0] = Matrix3d::Identity();
   integrator.reset(0.5, y);
   CHECK(integrator.statistics().chart_switches == switches + 1);

@@ -135,7 +135,8 @@ TEMPLATE_LIST_TEST_CASE("leaving a chart keeps R and omega", "[scene][chart]",
   if constexpr (Chart<P>::has_singularity) {
     using Body = tumble::RigidBody<P>;
     using C = Chart<P>;
-    tumble::Scene<tumble::Bodies<Body>> scene;
+    // [q; qdot], where a switch must also carry thetadot over (the quasi form stores omega as is).
+    tumble::Scene<tumble::Bodies<Body>, tumble::Loads<>, tumble::StateForm::generalized> scene;
     const auto mp = tumble::MassProperties<double>::about_centroid(
         2.0, Eigen::Vector3d(0.5, 0.7, 0.9).asDiagonal());
     // Started far from the singular set: the chart has no base yet.

@@ -55,7 +55,10 @@ using tumble::MassProperties;
 using tumble::ReferencePoint;
 using tumble::RigidBody;
 using tumble::RotationVector;
-using tumble::Scene;
+// This file tests the chapter's form, [q; qdot] per body (StateForm::generalized); the default,
+// quasi-velocities, has its own tests (quasi_velocities.test.cpp).
+template <class B, class L = tumble::Loads<>>
+using Scene = tumble::Scene<B, L, tumble::StateForm::generalized>;
 using tumble::SceneState;
 using tumble::SceneWorkspace;
 

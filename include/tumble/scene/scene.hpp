@@ -122,7 +122,7 @@ template <class Load> struct Attached {
 };
 }  // namespace detail
 
-template <class BodyList, class LoadList = Loads<>, StateForm Form = StateForm::generalized>
+template <class BodyList, class LoadList = Loads<>, StateForm Form = StateForm::quasi_velocities>
 class Scene;
 
 template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Loads<L...>, Form> {

@@ -28,11 +28,13 @@
 namespace tumble {
 
 /// The layout of a scene's continuous state, chosen at compile time (Scene's third parameter).
-/// - generalized: per body [q; qdot], the reference chapter's form (Eq. 1.32 integrated as is);
-/// - quasi_velocities: per body [q; v; omega]: the rates of the Newton-Euler equations are
-///   integrated, and theta follows from the inverse kinematic map thetadot = G^{-1} omega. Attitude
-///   errors then do not feed back into omega, which makes it far more accurate per tolerance on a
-///   tumbling body, and neither thetaddot nor Gdot thetadot is computed.
+/// - quasi_velocities (the default): per body [q; v; omega]: the rates of the Newton-Euler
+///   equations are integrated, and theta follows from the inverse kinematic map
+///   thetadot = G^{-1} omega. Attitude errors then do not feed back into omega, which makes it
+///   far more accurate per tolerance on a tumbling body, and neither thetaddot nor Gdot thetadot
+///   is computed. Faster to a given accuracy than generalized on every problem of the work-
+///   precision study, with either integrator (docs/choosing.md);
+/// - generalized: per body [q; qdot], the reference chapter's form (Eq. 1.32 integrated as is).
 enum class StateForm {
   generalized,      ///< [r_oc; theta; rdot_oc; thetadot] per body, size 2 nq
   quasi_velocities  ///< [r_oc; theta; v; omega] per body, size nq + 6 ([theta; omega] if fixed)
