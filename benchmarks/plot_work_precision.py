@@ -61,8 +61,9 @@ def style(method, family, index):
         return dict(color=color, linestyle="--", linewidth=2.0, marker=marker, markersize=4,
                     label=method)
     if family in ("pinocchio", "peer"):
-        return dict(color="tab:brown", linestyle=":", linewidth=2.2, marker="D", markersize=4,
-                    label=method)
+        mujoco = method.startswith("MuJoCo")
+        return dict(color="black" if mujoco else "tab:brown", linestyle=":", linewidth=2.2,
+                    marker="s" if mujoco else "D", markersize=4, label=method)
     if family == "rk4":
         return dict(color="dimgray", linestyle="-.", linewidth=1.8, marker="x", markersize=5,
                     label=method)

@@ -173,12 +173,12 @@ double loglog_slope(const std::vector<std::pair<double, double>>& xy) {
 std::string header_text(const Options& o, const std::filesystem::path& out, int runs) {
   std::string load = first_line("/proc/loadavg", "");
   load = load.substr(0, load.find(' ', load.find(' ', load.find(' ') + 1) + 1));
-  // Calibrated on a 2-core machine: about 0.06 s per run of the sweep on average (best of 3),
-  // 10 s of micro-benchmarks, 10 s (quick) or 40 s (--full) of scaling, 15 s (quick) or 30 s
-  // (--full) of ensembles, 5 s of plots.
-  const double estimate = 0.06 * runs + (o.micro ? 10.0 : 0.0) +
-                          (o.scaling ? (o.full ? 40.0 : 10.0) : 0.0) +
-                          (o.ensemble ? (o.full ? 30.0 : 15.0) : 0.0) + (o.plots ? 5.0 : 0.0);
+  // Calibrated on a 2-core machine (2026-11-25, the quick run in 61 s): about 0.02 s per run of
+  // the sweep on average (best of 3), 10 s of micro-benchmarks, 5 s (quick) or 40 s (--full) of
+  // scaling, 10 s (quick) or 30 s (--full) of ensembles, 5 s of plots.
+  const double estimate = 0.02 * runs + (o.micro ? 10.0 : 0.0) +
+                          (o.scaling ? (o.full ? 40.0 : 5.0) : 0.0) +
+                          (o.ensemble ? (o.full ? 30.0 : 10.0) : 0.0) + (o.plots ? 5.0 : 0.0);
   std::ostringstream s;
   s << "tumble_bench (" << (o.full ? "full" : "quick")
     << " run): what tumble's rigid-body dynamics cost and the accuracy they buy\n"
@@ -191,8 +191,10 @@ std::string header_text(const Options& o, const std::filesystem::path& out, int 
     << "  build     " << compiler() << ", " << TUMBLE_BENCH_BUILD_TYPE << " ("
     << TUMBLE_BENCH_CXX_FLAGS << "); SUNDIALS " << SUNDIALS_VERSION << ", Eigen "
     << EIGEN_WORLD_VERSION << '.' << EIGEN_MAJOR_VERSION << '.' << EIGEN_MINOR_VERSION << "\n";
-  if (pinocchio_available()) {
-    s << "  peers     " << pinocchio_description() << "\n";
+  if (pinocchio_available() || mujoco_available()) {
+    s << "  peers     " << (pinocchio_available() ? pinocchio_description() : "")
+      << (pinocchio_available() && mujoco_available() ? "; " : "")
+      << (mujoco_available() ? "MuJoCo (mj_step, RK4)" : "") << "\n";
   }
   s << "  timing    " << (o.clock == TimeBase::wall ? "wall clock" : "thread CPU time")
     << ", best of " << o.reps << " runs per setting; this run: about "
