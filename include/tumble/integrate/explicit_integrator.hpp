@@ -4,38 +4,33 @@
 // its restarts at every chart switch dominate. The same shape of interface as the CVODE
 // SceneIntegrator (scene_integrator.hpp): advance, integrate, reset, state, statistics.
 //
-// The state is Odeint's std::array<double, N> when the scene's size N is given as a template
-// argument (checked against scene.size() at construction), a std::vector otherwise; the right-
-// hand side views it through Eigen::Map. Nothing is allocated per step (events' user callables
-// aside). Odeint supplies the steppers and the step-size controller (try_step); the loop is here,
-// and between two accepted steps it does what a one-step method can do without any restart:
-// - Three-parameter charts: the chart roots (scene/charts.hpp) are evaluated at the end of each
-//   trial step. A step that ends deeper in a switch zone than half its width (closer to the
-//   singularity than a quarter of the chart center's distance) is rejected and retried shorter,
-//   so no step jumps into a singularity; an accepted step that ends inside the zone is followed
-//   by recenter_charts, which re-centers (MRP: shadow set) and counts.
-// - Euler parameters: projected onto |p| = 1, p.pdot = 0 (scene/projection.hpp) after every step.
-// - User events (Scene::events()): a sign change of an event function over a step (in its
-//   direction) is located by the Illinois method to 1e-12 of the time scale, on Odeint's dense
-//   output (dopri5) or by re-stepping from the step's start (the pairs without dense output); the
-//   step is cut there and the action applied.
-// - Output times are reached by stepping to them exactly (the step is shortened, the controller's
-//   longer suggestion kept for the next one): no interpolation error, and the state returned is a
-//   projected step result on the current chart.
-// After anything changes y between steps (projection, chart switch, event), the derivative at
-// the step's start is evaluated again (for dopri5 this costs its first-same-as-last saving).
-// Stiffness: one advance() may take OdeintOptions::max_steps step attempts. Past that, the
-// largest eigenvalue modulus rho of the Jacobian is estimated (power iteration on difference
-// quotients); when the mean step h has h rho > 1 (steps held near the method's stability bound)
-// and at least 10 % of the attempts failed the error test, the run throws StiffSceneError naming
-// BDF, otherwise ExplicitIntegrationError. Never a run that does not end, never a NaN state:
-// non-finite trial states are rejected, and a step size at the rounding level of t throws.
+// The state is Odeint's std::array<double, N> when the scene's size N is a template argument
+// (checked against scene.size()), a std::vector otherwise, viewed through Eigen::Map; nothing is
+// allocated per step (events' user callables aside). Odeint supplies the steppers and the
+// step-size controller (try_step); the loop is here (docs/integrators.md), and between two
+// accepted steps it does what a one-step method can do without a restart:
+// - Three-parameter charts: a trial step that ends deeper in a switch zone than half its width
+//   is rejected and retried shorter; an accepted step that ends inside the zone is followed by
+//   recenter_charts (scene/charts.hpp: re-centering, MRP's shadow set), counted per body.
+// - Euler parameters: projected onto their manifold after every step (scene/projection.hpp).
+// - User events: a sign change over a step, in the event's direction, is located by the Illinois
+//   method to 1e-12 of the time scale, on Odeint's dense output (dopri5) or by re-stepping from
+//   the step's start; the step is cut there and the action applied.
+// - Output times are stepped to exactly (the controller's longer suggestion kept): the state
+//   returned is a projected step result. Except in integrate() with Dormand-Prince on a scene
+//   without events (OdeintOptions::interpolate_outputs): the steps run free to the last output
+//   time and the outputs inside a step are read off its dense output, on its chart.
+// After y changes between steps the derivative at the step's start is evaluated again (dopri5
+// loses its first-same-as-last saving). Stiffness: past OdeintOptions::max_steps attempts in one
+// advance(), the Jacobian's largest eigenvalue modulus rho is estimated; with h rho > 1 for the
+// mean step h and at least 10 % of the attempts rejected, StiffSceneError names BDF, otherwise
+// ExplicitIntegrationError. Never a run that does not end, never a NaN state: non-finite trial
+// states are rejected, and a step size at the rounding level of t throws.
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <initializer_list>
-#include <limits>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -46,7 +41,9 @@
 #include <Eigen/Core>
 
 #include "tumble/core/errors.hpp"
+#include "tumble/integrate/detail/explicit_numerics.hpp"
 #include "tumble/integrate/detail/odeint_stepper.hpp"
+#include "tumble/integrate/detail/state_check.hpp"
 #include "tumble/integrate/errors.hpp"
 #include "tumble/integrate/explicit_options.hpp"
 #include "tumble/scene/chart.hpp"
@@ -94,6 +91,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     ev_old_.assign(scene.events().size(), 0.0);
     ev_new_.assign(scene.events().size(), 0.0);
     event_state_.y.setZero(n);  // what event actions see: sized once, so they allocate nothing
+    out_state_.y.setZero(n);    // interpolated outputs, likewise
+    out_state_.base.assign(static_cast<std::size_t>(scene.body_count()),
+                           Matrix3<double>::Identity());
     event_state_.base.assign(static_cast<std::size_t>(scene.body_count()),
                              Matrix3<double>::Identity());
     state_.y.setZero(n);
@@ -130,6 +130,10 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
             num(t_) + "; found " + num(t) + " after " + num(last));
       }
       last = t;
+    }
+    if (interpolating()) {
+      std::visit([&](auto& st) { integrate_dense(st, times, observer); }, stepper_);
+      return;
     }
     for (const double t : times) {
       observer(t, std::as_const(advance(t)));
@@ -186,6 +190,53 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
  private:
   using Stepper =
       std::variant<detail::Fehlberg78<State>, detail::Dopri5<State>, detail::CashKarp54<State>>;
+
+  /// Whether integrate() reads its outputs off the dense output (OdeintOptions).
+  [[nodiscard]] bool interpolating() const {
+    return options_.interpolate_outputs && options_.method == OdeintMethod::dopri5 &&
+           scene_->events().empty();
+  }
+
+  /// integrate() on the dense output: free steps to the last output time; each accepted step
+  /// hands the outputs inside it to the observer, interpolated on the step (x_old_, x_ before
+  /// the projection and the chart switch, base_ the step's chart bases).
+  template <class S, class Times, class Observer>
+  void integrate_dense(S& stepper, const Times& times, Observer& observer) {
+    auto it = std::begin(times);
+    const auto end = std::end(times);
+    for (; it != end && *it <= t_; ++it) {
+      observer(*it, std::as_const(sync()));
+    }
+    double t_last = t_;
+    for (auto j = it; j != end; ++j) {
+      t_last = *j;
+    }
+    const System sys{this};
+    const auto outputs = [&](double t_old, double t_new) {
+      if constexpr (S::dense) {
+        const auto first = it;
+        for (; it != end && *it <= t_new; ++it) {
+          stepper.state_at(sys, *it, x_tmp_, x_old_, dxdt_old_, t_old, x_, dxdt_, t_new);
+          out_state_.y = map(x_tmp_);
+          if constexpr (SceneT::has_constraints) {
+            Eigen::VectorXd no_error;  // empty: nothing to project but the state
+            tumble::project(*scene_, out_state_.y, corr_, no_error);
+            out_state_.y += corr_;
+          }
+          out_state_.base = base_;
+          observer(*it, std::as_const(out_state_));
+        }
+        if (it != first) {
+          run_ = Run{.t_start = t_new};  // the step budget counts per output interval
+        }
+      }
+    };
+    run_ = Run{.t_start = t_};
+    while (t_ < t_last) {
+      step_with(stepper, t_last, outputs);
+    }
+    sync();
+  }
 
   /// A spent budget is reported as stiffness when the mean step h and the estimated largest
   /// eigenvalue rho of the Jacobian have h rho above this (the steps sit near the stability bound
@@ -248,28 +299,15 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   }
 
   void check_state(const SceneState& s, double t) const {
-    const char* who = "tumble::OdeintIntegrator: ";
+    const std::string who = "tumble::OdeintIntegrator";
     if (!std::isfinite(t)) {
-      throw std::invalid_argument(who + std::string("the time ") + num(t) + " is not finite");
+      throw std::invalid_argument(who + ": the time " + num(t) + " is not finite");
     }
-    if (s.y.size() != size() || static_cast<int>(s.base.size()) != scene_->body_count()) {
-      throw std::invalid_argument(who + std::string("the state has ") + std::to_string(s.y.size()) +
-                                  " entries and " + std::to_string(s.base.size()) +
-                                  " chart bases, but the scene has size " + std::to_string(size()) +
-                                  " and " + std::to_string(scene_->body_count()) + " bodies");
-    }
+    detail::check_scene_state(*scene_, s, who);
     for (Eigen::Index i = 0; i < s.y.size(); ++i) {
       if (!std::isfinite(s.y[i])) {
-        throw std::invalid_argument(who + std::string("the state is not finite: y[") +
-                                    std::to_string(i) + "] = " + num(s.y[i]));
-      }
-    }
-    for (const auto& b : s.base) {
-      if (!b.allFinite() ||
-          (b.transpose() * b - Matrix3<double>::Identity()).cwiseAbs().maxCoeff() > 1e-9 ||
-          b.determinant() < 0) {
-        throw std::invalid_argument(who + std::string("a chart base of the state is not a "
-                                                      "proper rotation"));
+        throw std::invalid_argument(who + ": the state is not finite: y[" + std::to_string(i) +
+                                    "] = " + num(s.y[i]));
       }
     }
   }
@@ -330,30 +368,33 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     }
   }
 
-  /// The initial step: Hairer, Norsett and Wanner, Solving ODEs I, Sec. II.4 (one Euler step).
+  /// The initial step (detail::initial_step) for the stepper's order.
   double initial_step() {
     const double p = std::visit([](const auto& s) { return double(s.order); }, stepper_);
-    const auto y = map(x_);
-    const auto f = map(dxdt_);
-    const auto scale = (options_.atol + options_.rtol * y.array().abs()).eval();
-    const double d0 = std::sqrt((y.array() / scale).square().mean());
-    const double d1 = std::sqrt((f.array() / scale).square().mean());
-    double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;
-    h0 = std::min(h0, options_.max_step);
-    map(x_tmp_) = y + h0 * f;
-    try {
-      evaluate(x_tmp_, x_new_, t_);
-    } catch (const NonFiniteError&) {
-      return h0;
-    }
-    const double d2 = std::sqrt(((map(x_new_) - f).array() / scale).square().mean()) / h0;
-    const double dm = std::max(d1, d2);
-    const double h1 = dm <= 1e-15 ? std::max(1e-6, 1e-3 * h0) : std::pow(0.01 / dm, 1.0 / (p + 1));
-    return std::min({100.0 * h0, h1, options_.max_step});
+    auto y1 = map(x_tmp_);
+    auto f1 = map(x_new_);
+    return detail::initial_step(evaluator(), map(std::as_const(x_)), map(std::as_const(dxdt_)), y1,
+                                f1, options_.atol, options_.rtol, p, options_.max_step);
+  }
+
+  /// f(y, f) for the numerics of detail/explicit_numerics.hpp: false when y cannot be evaluated.
+  auto evaluator() {
+    return [this](const auto& y, auto& f) {
+      try {
+        ++stats_.rhs_evals;
+        tumble::rhs(*scene_, ws_, t_, y, bases(), f);
+        return true;
+      } catch (const NonFiniteError&) {
+        return false;
+      }
+    };
   }
 
   /// One accepted step towards t_out (cut at an event); throws when the budget is spent.
-  template <class S> void step_with(S& stepper, double t_out) {
+  /// on_step(t_old, t_new) sees the accepted step before events, projection and chart switches.
+  template <class S, class OnStep = void (*)(double, double)>
+  void step_with(
+      S& stepper, double t_out, OnStep&& on_step = [](double, double) {}) {
     const System sys{this};
     for (;;) {
       if (run_.attempts >= options_.max_steps) {
@@ -402,13 +443,14 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       // Stepped to t_out exactly: keep the controller's longer suggestion for the next step.
       const double t_new = to_end ? t_out : t;
       h_ = to_end ? std::max(h, h_) : h;
-      finish_step(stepper, sys, t_new);
+      finish_step(stepper, sys, t_new, on_step);
       return;
     }
   }
 
   /// After an accepted step from (t_, x_) to (t_new, x_new_): events, then projection and charts.
-  template <class S> void finish_step(S& stepper, const System& sys, double t_new) {
+  template <class S, class OnStep>
+  void finish_step(S& stepper, const System& sys, double t_new, OnStep& on_step) {
     std::swap(x_old_, x_);
     std::swap(dxdt_old_, dxdt_);
     std::swap(x_, x_new_);
@@ -417,6 +459,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     }
     const double t_old = t_;
     t_ = t_new;
+    on_step(t_old, t_new);
     bool event = false, recentered = false;
     if (!ev_old_.empty()) {
       events_at(t_new, x_, ev_new_);
@@ -449,34 +492,12 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       if (!crosses(ev_old_[i], ev_new_[i], events[i].direction)) {
         continue;
       }
-      // Illinois (modified regula falsi) on [a, b], g(a) and g(b) of opposite signs.
-      double a = t_old, b = t_new, ga = ev_old_[i], gb = ev_new_[i];
-      int side = 0;
-      for (int it = 0; it < 200 && b - a > tol; ++it) {
-        double c = it < 60 ? (a * gb - b * ga) / (gb - ga) : 0.5 * (a + b);
-        if (!(c > a && c < b)) {
-          c = 0.5 * (a + b);
-        }
-        state_at(c, x_tmp_);
-        const double gc = events[i].function(c, SceneStateView(x_tmp_.data(), size(), bases()));
-        if (gc == 0.0) {
-          b = c;
-          break;
-        }
-        if ((gc > 0.0) == (gb > 0.0)) {
-          b = c, gb = gc;
-          if (side == 1) {
-            ga *= 0.5;
-          }
-          side = 1;
-        } else {
-          a = c, ga = gc;
-          if (side == -1) {
-            gb *= 0.5;
-          }
-          side = -1;
-        }
-      }
+      const double b = detail::illinois(
+          [&](double c) {
+            state_at(c, x_tmp_);
+            return events[i].function(c, SceneStateView(x_tmp_.data(), size(), bases()));
+          },
+          t_old, t_new, ev_old_[i], ev_new_[i], tol);
       if (b < t_first || first == events.size()) {
         first = i;
         t_first = b;
@@ -505,37 +526,22 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     return true;
   }
 
-  /// The largest eigenvalue modulus of df/dy at the current state, by power iteration on
-  /// difference quotients (30 evaluations; only when a budget is spent, so the scratch states
-  /// are free). 0 when the right-hand side cannot be evaluated.
+  /// detail::spectral_radius at the current state (only when a budget is spent, so the scratch
+  /// states are free); 0 when the right-hand side cannot be evaluated.
   double spectral_radius() {
     try {
       if (!deriv_valid_) {
         evaluate(x_, dxdt_, t_);
         deriv_valid_ = true;
       }
-      auto v = map(x_new_);
-      for (Eigen::Index i = 0; i < v.size(); ++i) {
-        v[i] = 1.0 + 0.1 * static_cast<double>(i % 7);  // no special direction
-      }
-      v.normalize();
-      double rho = 0.0;
-      const double scale =
-          std::sqrt(std::numeric_limits<double>::epsilon()) * (1.0 + map(x_).norm());
-      for (int k = 0; k < 30; ++k) {
-        map(x_tmp_) = map(x_) + scale * v;
-        evaluate(x_tmp_, dxdt_new_, t_);
-        v = (map(dxdt_new_) - map(dxdt_)) / scale;
-        rho = v.norm();
-        if (!(rho > 0.0) || !std::isfinite(rho)) {
-          return 0.0;
-        }
-        v /= rho;
-      }
-      return rho;
     } catch (const NonFiniteError&) {
       return 0.0;
     }
+    auto v = map(x_new_);
+    auto y1 = map(x_tmp_);
+    auto f1 = map(dxdt_new_);
+    return detail::spectral_radius(evaluator(), map(std::as_const(x_)), map(std::as_const(dxdt_)),
+                                   v, y1, f1);
   }
 
   [[noreturn]] void out_of_budget(double t_out) {
@@ -586,7 +592,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   std::vector<double> ev_old_, ev_new_;  ///< event functions at the step's start and end
   ChartBases base_;
   std::vector<long> switches_;
-  SceneState event_state_, state_;
+  SceneState event_state_, state_, out_state_;
   OdeintStatistics stats_;
 };
 

@@ -35,6 +35,14 @@ struct OdeintOptions {
   /// of integrate(). Past it the integrator throws: StiffSceneError when the steps looked like
   /// those of an explicit method on a stiff scene, ExplicitIntegrationError otherwise.
   long max_steps = 100000;
+  /// integrate() with Dormand-Prince on a scene without events: step freely and read the output
+  /// times off Odeint's dense output (its continuous extension, order 4) instead of stepping to
+  /// each of them. When output times are denser than the steps the accuracy needs, this saves
+  /// the extra steps. The state handed to the observer is then interpolated (quaternions
+  /// projected onto |p| = 1); the integrator's own state is always a step result, and advance()
+  /// always steps to t_out. Ignored for the pairs without dense output (Fehlberg 7(8),
+  /// Cash-Karp) and for scenes with events.
+  bool interpolate_outputs = true;
   /// Euler parameters: the constraint stabilization terms in the right-hand side
   /// (SceneWorkspace::stabilize_constraints). Off by default: the quaternions are projected onto
   /// |p| = 1 after every step, and the terms, which act on the Runge-Kutta stages off the

@@ -29,6 +29,7 @@
 
 #include "tumble/core/errors.hpp"
 #include "tumble/integrate/cvode.hpp"
+#include "tumble/integrate/detail/state_check.hpp"
 #include "tumble/integrate/errors.hpp"
 #include "tumble/scene/charts.hpp"
 #include "tumble/scene/jacobian.hpp"
@@ -282,21 +283,7 @@ template <class SceneT> class SceneIntegrator {
   using SceneSystem = detail::SceneSystem<SceneT>;
 
   static void check_state(const SceneT& scene, const SceneState& s, const char* who) {
-    if (s.y.size() != scene.size() || static_cast<int>(s.base.size()) != scene.body_count()) {
-      throw std::invalid_argument(
-          std::string("tumble::SceneIntegrator::") + who + ": the state has " +
-          std::to_string(s.y.size()) + " entries and " + std::to_string(s.base.size()) +
-          " chart bases, but the scene has size " + std::to_string(scene.size()) + " and " +
-          std::to_string(scene.body_count()) + " bodies");
-    }
-    for (const auto& b : s.base) {
-      if (!b.allFinite() ||
-          (b.transpose() * b - Matrix3<double>::Identity()).cwiseAbs().maxCoeff() > 1e-9 ||
-          b.determinant() < 0) {
-        throw std::invalid_argument(std::string("tumble::SceneIntegrator::") + who +
-                                    ": a chart base of the state is not a proper rotation");
-      }
-    }
+    detail::check_scene_state(scene, s, std::string("tumble::SceneIntegrator::") + who);
   }
 
   static Cvode<SceneSystem> make(const SceneT& scene, double t0, const SceneState& s0,
