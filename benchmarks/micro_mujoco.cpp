@@ -20,21 +20,12 @@
 #include <mujoco/mujoco.h>
 
 #include "micro_common.hpp"
+#include "mujoco_handles.hpp"
 
 namespace tumble::bench {
 namespace {
 
 using Vector6 = Eigen::Matrix<double, 6, 1>;
-
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-struct SpecDeleter {
-  void operator()(mjSpec* s) const { mj_deleteSpec(s); }
-};
 
 template <ReferencePoint Ref> std::string mjcf() {
   const Vector3<double> c =

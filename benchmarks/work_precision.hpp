@@ -323,6 +323,12 @@ Run run_pinocchio(const Problem& p, const MethodSetting& c, const Timing& timing
 bool mujoco_available();
 Run run_mujoco(const Problem& p, const MethodSetting& c, const Timing& timing);
 
+/// Whether a problem is one of the torque-free bodies (no load at all, attitude only).
+inline bool torque_free(const Problem& p) {
+  return p.kind == ProblemKind::tumbling || p.kind == ProblemKind::minor_axis ||
+         p.kind == ProblemKind::major_axis || p.kind == ProblemKind::spinner;
+}
+
 /// Whether a problem has no spring (the floors with a closed form of their own: no spring).
 inline bool closed_form_problem(const Problem& p) { return p.stiffness == 0; }
 

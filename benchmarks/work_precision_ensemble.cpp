@@ -111,6 +111,22 @@ double process_cpu() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
+/// The row's times from the wall times s of its repetitions (not empty) and their CPU time:
+/// median, best, reps, cores (CPU over wall) and CPU per run.
+void summarize_times(EnsembleRow& row, std::vector<double> s, double cpu) {
+  double wall = 0;
+  for (const double x : s) {
+    wall += x;
+  }
+  row.cores = cpu / wall;
+  row.cpu_per_run = cpu / static_cast<double>(s.size() * row.runs);
+  std::sort(s.begin(), s.end());
+  const std::size_t n = s.size();
+  row.reps = static_cast<int>(n);
+  row.seconds = n % 2 == 1 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
+  row.best = s.front();
+}
+
 /// Times body() `reps` times on the wall clock into the row (median, best); a throw marks the
 /// row failed.
 template <class Body> void time_reps(EnsembleRow& row, int reps, Body&& body) {
@@ -133,16 +149,7 @@ template <class Body> void time_reps(EnsembleRow& row, int reps, Body&& body) {
     row.ok = false;
     return;
   }
-  double wall = 0;
-  for (const double x : s) {
-    wall += x;
-  }
-  row.cores = cpu / wall;
-  row.cpu_per_run = cpu / static_cast<double>(s.size() * row.runs);
-  std::sort(s.begin(), s.end());
-  const std::size_t n = s.size();
-  row.seconds = n % 2 == 1 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
-  row.best = s.front();
+  summarize_times(row, std::move(s), cpu);
 }
 
 /// A field of /proc/self/status in kB ("VmRSS", "VmHWM"); -1 where there is none.
@@ -288,17 +295,7 @@ struct Study {
       row.note = why.empty() ? "no times in " + log.string() : why;
       result.mpi_note = row.note;
     } else {
-      double wall = 0;
-      for (const double x : s) {
-        wall += x;
-      }
-      row.cores = cpu / wall;
-      row.cpu_per_run = cpu / static_cast<double>(s.size() * row.runs);
-      std::sort(s.begin(), s.end());
-      const std::size_t n = s.size();
-      row.reps = static_cast<int>(n);
-      row.seconds = n % 2 == 1 ? s[n / 2] : 0.5 * (s[n / 2 - 1] + s[n / 2]);
-      row.best = s.front();
+      summarize_times(row, std::move(s), cpu);
       result.mpi_same = (ranks == 1 || result.mpi_same) && have_sum && sum == reference_sum;
     }
     add(std::move(row));

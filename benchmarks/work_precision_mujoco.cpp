@@ -31,20 +31,10 @@
 #include <Eigen/Geometry>
 #include <mujoco/mujoco.h>
 
+#include "mujoco_handles.hpp"
+
 namespace tumble::bench {
 namespace {
-
-struct ModelDeleter {
-  void operator()(mjModel* m) const { mj_deleteModel(m); }
-};
-struct DataDeleter {
-  void operator()(mjData* d) const { mj_deleteData(d); }
-};
-struct SpecDeleter {
-  void operator()(mjSpec* s) const { mj_deleteSpec(s); }
-};
-
-bool torque_free(const Problem& p) { return p.gravity.isZero() && p.stiffness == 0; }
 
 std::string mjcf(const Problem& p) {
   std::ostringstream os;

@@ -64,11 +64,6 @@ Run run_tumble_odeint(const Problem& p, const MethodSetting& c, const Timing& ti
   });
 }
 
-bool torque_free(const Problem& p) {
-  return p.kind == ProblemKind::tumbling || p.kind == ProblemKind::minor_axis ||
-         p.kind == ProblemKind::major_axis || p.kind == ProblemKind::spinner;
-}
-
 /// The entry "Odeint F78 EP quasi" (Fehlberg 7(8), Euler parameters, [q; v; omega]), ...; with
 /// Translation::free, "... free": the torque-free problems with the body free (r and v in the
 /// state), to show what carrying them costs.

@@ -131,13 +131,19 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       }
       last = t;
     }
-    if (interpolating()) {
-      std::visit([&](auto& st) { integrate_dense(st, times, observer); }, stepper_);
-      return;
-    }
-    for (const double t : times) {
-      observer(t, std::as_const(advance(t)));
-    }
+    std::visit(
+        [&]<class S>(S& st) {
+          if constexpr (S::dense) {  // Dormand-Prince
+            if (options_.interpolate_outputs && scene_->events().empty()) {
+              integrate_dense(st, times, observer);
+              return;
+            }
+          }
+          for (const double t : times) {
+            observer(t, std::as_const(advance(t)));
+          }
+        },
+        stepper_);
   }
   template <class Observer>
   void integrate(std::initializer_list<double> times, Observer&& observer) {
@@ -191,17 +197,11 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   using Stepper =
       std::variant<detail::Fehlberg78<State>, detail::Dopri5<State>, detail::CashKarp54<State>>;
 
-  /// Whether integrate() reads its outputs off the dense output (OdeintOptions).
-  [[nodiscard]] bool interpolating() const {
-    return options_.interpolate_outputs && options_.method == OdeintMethod::dopri5 &&
-           scene_->events().empty();
-  }
-
-  /// integrate() on the dense output: free steps to the last output time; each accepted step
-  /// hands the outputs inside it to the observer, interpolated on the step (x_old_, x_ before
-  /// the projection and the chart switch, base_ the step's chart bases).
+  /// integrate() on the dense output of S: free steps to the last output time; each accepted
+  /// step hands the outputs inside it to the observer, interpolated on the step (x_old_, x_
+  /// before the projection and the chart switch, base_ the step's chart bases).
   template <class S, class Times, class Observer>
-  void integrate_dense(S& stepper, const Times& times, Observer& observer) {
+  void integrate_dense(S& stepper, const Times& times, Observer& observer) requires S::dense {
     auto it = std::begin(times);
     const auto end = std::end(times);
     for (; it != end && *it <= t_; ++it) {
@@ -213,22 +213,20 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     }
     const System sys{this};
     const auto outputs = [&](double t_old, double t_new) {
-      if constexpr (S::dense) {
-        const auto first = it;
-        for (; it != end && *it <= t_new; ++it) {
-          stepper.state_at(sys, *it, x_tmp_, x_old_, dxdt_old_, t_old, x_, dxdt_, t_new);
-          out_state_.y = map(x_tmp_);
-          if constexpr (SceneT::has_constraints) {
-            Eigen::VectorXd no_error;  // empty: nothing to project but the state
-            tumble::project(*scene_, out_state_.y, corr_, no_error);
-            out_state_.y += corr_;
-          }
-          out_state_.base = base_;
-          observer(*it, std::as_const(out_state_));
+      const auto first = it;
+      for (; it != end && *it <= t_new; ++it) {
+        stepper.state_at(sys, *it, x_tmp_, x_old_, dxdt_old_, t_old, x_, dxdt_, t_new);
+        out_state_.y = map(x_tmp_);
+        if constexpr (SceneT::has_constraints) {
+          Eigen::VectorXd no_error;  // empty: nothing to project but the state
+          tumble::project(*scene_, out_state_.y, corr_, no_error);
+          out_state_.y += corr_;
         }
-        if (it != first) {
-          run_ = Run{.t_start = t_new};  // the step budget counts per output interval
-        }
+        out_state_.base = base_;
+        observer(*it, std::as_const(out_state_));
+      }
+      if (it != first) {
+        run_ = Run{.t_start = t_new};  // the step budget counts per output interval
       }
     };
     run_ = Run{.t_start = t_};
