@@ -59,7 +59,8 @@ using Integrator = OdeintIntegrator<ensemble::TumblingScene, ensemble::kStates>;
 double run_error(const Tumbling& t, const OdeintOptions& o, const Eigen::Vector3d& w,
                  OdeintStatistics* stats = nullptr) {
   Integrator integrator(t.scene, 0.0, t.state_with(w), o);
-  const Eigen::Matrix3d r = rotation(t.scene, t.body, integrator.advance(kEnd));
+  integrator.advance(kEnd);
+  const Eigen::Matrix3d r = rotation(t.scene, t.body, integrator.state());
   if (stats != nullptr) {
     *stats = integrator.statistics();
   }
@@ -247,14 +248,16 @@ struct Study {
         for (std::size_t i = 0; i < plan.runs; ++i) {
           double angle = 0;
           integrator.reset(0.0, initial(i));
-          observe(angle, i, kEnd, integrator.advance(kEnd));
+          integrator.advance(kEnd);
+          observe(angle, i, kEnd, integrator.state());
           sum += angle;
         }
       } else {
         for (std::size_t i = 0; i < plan.runs; ++i) {
           double angle = 0;
           Integrator integrator = make(t.scene, 0.0, initial(i));
-          observe(angle, i, kEnd, integrator.advance(kEnd));
+          integrator.advance(kEnd);
+          observe(angle, i, kEnd, integrator.state());
           sum += angle;
         }
       }

@@ -110,9 +110,9 @@ ScalingRow measure_bdf(int n, CvodeLinearSolver solver, const ScalingPlan& plan,
              : solver == CvodeLinearSolver::band ? (exact_jacobian ? "bdf-band" : "bdf-band-dq")
                                                  : "bdf-gmres";
   SceneIntegratorOptions o;
-  o.cvode.method = CvodeMethod::bdf;
-  o.cvode.rtol = 1e-6;
-  o.cvode.atol = 1e-8;
+  o.method = CvodeMethod::bdf;
+  o.rtol = 1e-6;
+  o.atol = 1e-8;
   o.cvode.linear_solver = solver;
   o.cvode.use_system_jacobian = exact_jacobian;
   // band: the half-bandwidths are left at -1, so SceneIntegrator takes the scene's own

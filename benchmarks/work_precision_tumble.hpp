@@ -22,9 +22,9 @@ namespace tumble::bench {
 
 inline SceneIntegratorOptions scene_options(const MethodSetting& c) {
   SceneIntegratorOptions o;
-  o.cvode.method = c.scheme == Scheme::bdf ? CvodeMethod::bdf : CvodeMethod::adams;
-  o.cvode.rtol = c.tol;
-  o.cvode.atol = c.tol;
+  o.method = c.scheme == Scheme::bdf ? CvodeMethod::bdf : CvodeMethod::adams;
+  o.rtol = c.tol;
+  o.atol = c.tol;
   o.cvode.use_system_jacobian = c.exact_jacobian;
   o.cvode.fused_vector_operations = c.fused;
   return o;

@@ -80,7 +80,8 @@ Scene make_scene(const Draw& d) {
 
 const auto make_integrator = [](const Scene& s, double t0, const tumble::SceneState& y0) {
   tumble::OdeintOptions options;
-  options.rtol = options.atol = 1e-10;
+  options.rtol = 1e-10;
+  options.atol = 1e-10;
   return tumble::OdeintIntegrator<Scene, kStates>(s, t0, y0, options);
 };
 
@@ -111,7 +112,8 @@ int main(int argc, char** argv) {
   // The nominal run, once, in this thread.
   const Scene nominal = make_scene({kInertia, kOmega});
   auto integrator = make_integrator(nominal, 0.0, nominal.initial_state());
-  const Eigen::Vector3d x_nominal = boresight(nominal, integrator.advance(kEnd));
+  integrator.advance(kEnd);
+  const Eigen::Vector3d x_nominal = boresight(nominal, integrator.state());
 
   // The dispersed runs, in 10 blocks, each across the cores (threads = 0: TBB's choice).
   const tumble::EnsembleOptions options{.threads = 0, .grain = 8};

@@ -80,9 +80,9 @@ int main() {
   scene.add_load(id, UniformGravity({0, 0, -g}));
 
   SceneIntegratorOptions options;
-  options.cvode.method = CvodeMethod::adams;  // not stiff: no spring at the tip
-  options.cvode.rtol = 1e-10;
-  options.cvode.atol = 1e-10;
+  options.method = CvodeMethod::adams;  // not stiff: no spring at the tip
+  options.rtol = 1e-10;
+  options.atol = 1e-10;
   SceneIntegrator integrator(scene, 0.0, options);
 
   const ClosedForm exact(m, g, l, a_tip, c_axis, theta0, spin);
@@ -96,7 +96,8 @@ int main() {
   double first_crossing = -1, last_crossing = -1, reaction_max = 0, reaction_min = 1e300;
   int crossings = 0;
   for (int k = 1; k <= periods * per_period; ++k) {
-    const SceneState& s = integrator.advance(k * dt);
+    integrator.advance(k * dt);
+    const SceneState& s = integrator.state();
     const Eigen::Vector3d axis = tumble::rotation(scene, id, s).col(2);
     const double u = axis.z(), azimuth = std::atan2(axis.y(), axis.x());
     psi += std::remainder(azimuth - last_azimuth, 2 * std::numbers::pi);

@@ -47,9 +47,9 @@ int main(int argc, char** argv) {
   Scene<Bodies<Body>> scene;
   const auto id = scene.add(body, {.omega = {0.01, 10.0, 0.0}});
   SceneIntegratorOptions options;
-  options.cvode.method = CvodeMethod::adams;
-  options.cvode.rtol = 1e-10;
-  options.cvode.atol = 1e-12;
+  options.method = CvodeMethod::adams;
+  options.rtol = 1e-10;
+  options.atol = 1e-12;
   SceneIntegrator integrator(scene, 0.0, options);
 
   const double t_end = 10.0;

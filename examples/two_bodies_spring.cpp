@@ -31,15 +31,16 @@ int main() {
                                      {.stiffness = 50.0, .damping = 0.0, .rest_length = 0.5}));
 
   SceneIntegratorOptions options;
-  options.cvode.method = CvodeMethod::adams;
-  options.cvode.rtol = 1e-10;
-  options.cvode.atol = 1e-12;
+  options.method = CvodeMethod::adams;
+  options.rtol = 1e-10;
+  options.atol = 1e-12;
   SceneIntegrator integrator(scene, 0.0, options);
   const tumble::SceneState& y0 = scene.initial_state();
   const Eigen::Vector3d p0 = tumble::linear_momentum(scene, y0),
                         h0 = tumble::angular_momentum(scene, y0);
   const double e0 = tumble::energy(scene, y0);
-  const tumble::SceneState& y = integrator.advance(20.0);
+  integrator.advance(20.0);
+  const tumble::SceneState& y = integrator.state();
   const auto s = integrator.statistics();
   std::printf("after 20 s: |dp|/|p| = %.2e, |dh|/|h| = %.2e, |dE|/E = %.2e\n",
               (tumble::linear_momentum(scene, y) - p0).norm() / p0.norm(),

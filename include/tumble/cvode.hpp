@@ -1,5 +1,6 @@
 #pragma once
-// tumble's integration module: everything that needs SUNDIALS CVODE (link tumble::cvode).
+// tumble's CVODE integration: everything that needs SUNDIALS CVODE and nothing of Boost (link
+// tumble::cvode). tumble/integrate.hpp adds the explicit integrator and the front door.
 //
 //   tumble::Cvode<System>      the CVODE integrator of y' = f(t, y) (integrate/cvode.hpp)
 //   tumble::CvodeSystem        what a system provides, and its optional members
@@ -7,9 +8,11 @@
 //   tumble::CvodeOptions       method, tolerances, step and solver options, projection
 //   tumble::CvodeStatistics    counters (both in integrate/options.hpp, which needs no SUNDIALS)
 //   tumble::SceneIntegrator    a Scene integrated with CVODE (charts, projection, events)
-//   tumble::IntegrationError   CVODE failure; tumble::RecoverableError for callbacks
-//                              (integrate/errors.hpp, which needs no SUNDIALS)
+//   tumble::IntegrationError   any integrator's failure; tumble::CvodeError CVODE's, with its
+//                              flag; tumble::RecoverableError for callbacks (integrate/errors.hpp)
+//   the shared vocabulary      integrate/common.hpp
 
+#include "tumble/integrate/common.hpp"
 #include "tumble/integrate/cvode.hpp"
 #include "tumble/integrate/errors.hpp"
 #include "tumble/integrate/options.hpp"

@@ -26,10 +26,8 @@ class DecayIntegrator {
   DecayIntegrator(const Decay& d, double t0, const tumble::SceneState& s0) : k_(d.k) {
     reset(t0, s0);
   }
-  const tumble::SceneState& advance(double t) {
-    state_.y[0] = y0_ * std::exp(-k_ * (t - t0_));
-    return state_;
-  }
+  void advance(double t) { state_.y[0] = y0_ * std::exp(-k_ * (t - t0_)); }
+  const tumble::SceneState& state() const { return state_; }
   void reset(double t0, const tumble::SceneState& s0) {
     if (s0.y[0] < 0.0) {
       throw std::invalid_argument("negative initial state");

@@ -105,7 +105,8 @@ struct Tumbling {
 
 tumble::OdeintOptions odeint_options() {
   tumble::OdeintOptions o;
-  o.rtol = o.atol = kTol;
+  o.rtol = kTol;
+  o.atol = kTol;
   return o;
 }
 const auto make_odeint = [](const SceneT& s, double t0, const SceneState& y0) {

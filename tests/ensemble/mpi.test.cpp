@@ -100,7 +100,8 @@ struct Tumbling {
 
 const auto make = [](const SceneT& s, double t0, const SceneState& y0) {
   tumble::OdeintOptions o;
-  o.rtol = o.atol = 1e-10;
+  o.rtol = 1e-10;
+  o.atol = 1e-10;
   return Odeint(s, t0, y0, o);
 };
 

@@ -27,6 +27,7 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Eigen::VectorXd;
 using tumble::Bodies;
+using tumble::CvodeError;
 using tumble::CvodeMethod;
 using tumble::IntegrationError;
 using tumble::Loads;
@@ -74,7 +75,7 @@ using TestScene = Scene<Bodies<Ep, Zyx>, Loads<UserF, tumble::SpringDamperBetwee
 
 SceneIntegratorOptions opts(CvodeMethod m = CvodeMethod::bdf) {
   SceneIntegratorOptions o;
-  o.cvode.method = m;
+  o.method = m;
   return o;
 }
 
@@ -172,14 +173,14 @@ TEST_CASE("bad input: tolerances that are not positive and finite", "[integrate]
   (void)scene.add(Ep(kMass), {.omega = {0, 1, 0}});
   for (const double rtol : {0.0, -1e-6, kNaN, kInf}) {
     auto o = opts();
-    o.cvode.rtol = rtol;
+    o.rtol = rtol;
     INFO("rtol " << rtol);
     CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, o); }),
               "'rtol' must be finite and > 0"));
   }
   for (const double atol : {0.0, -1.0, kNaN}) {
     auto o = opts();
-    o.cvode.atol = atol;
+    o.atol = atol;
     INFO("atol " << atol);
     CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, o); }),
               "'atol' must be finite and > 0"));
@@ -187,10 +188,10 @@ TEST_CASE("bad input: tolerances that are not positive and finite", "[integrate]
   auto o = opts();
   VectorXd atol = VectorXd::Constant(scene.size(), 1e-8);
   atol(4) = 0.0;
-  o.cvode.atol = atol;
+  o.atol = atol;
   CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, o); }),
             "'atol' component 4 must be finite and > 0"));
-  o.cvode.atol = VectorXd::Constant(3, 1e-8);
+  o.atol = VectorXd::Constant(3, 1e-8);
   CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, o); }),
             "'atol' per component must have the system size 13 (got 3)"));
 }
@@ -203,9 +204,9 @@ TEST_CASE("bad input: other options out of range", "[integrate][bad_input]") {
   CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, o); }),
             "'max_order' must be in [1, 5] for BDF"));
   o = opts();
-  o.cvode.max_steps_per_call = -1;
+  o.max_steps = -1;
   CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, o); }),
-            "'max_steps_per_call' must be >= 0, 0 for no limit (got -1)"));
+            "'max_steps' must be >= 0, 0 for no limit (got -1)"));
   o = opts();
   o.cvode.stop_time = -1.0;
   CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, o); }),
@@ -260,7 +261,7 @@ TEST_CASE("bad input: a user force that returns NaN during integration", "[integ
   try {
     (void)integrator.advance(2.0);
     FAIL("integrated through a NaN force");
-  } catch (const IntegrationError& e) {
+  } catch (const CvodeError& e) {
     const std::string msg = e.what();
     CHECK(has(msg, "UserForce: the user force returned a non-finite wrench"));
     CHECK(has(msg, "rhs()"));
@@ -283,7 +284,7 @@ TEST_CASE("bad input: a user force or an event function that throws", "[integrat
     try {
       (void)integrator.advance(1.0);
       FAIL("no error");
-    } catch (const IntegrationError& e) {
+    } catch (const CvodeError& e) {
       CHECK(has(e.what(), "rhs() threw"));
       CHECK(has(e.what(), "sensor unplugged"));
       REQUIRE(e.cause() != nullptr);
@@ -303,7 +304,7 @@ TEST_CASE("bad input: a user force or an event function that throws", "[integrat
     try {
       (void)integrator.advance(1.0);
       FAIL("no error");
-    } catch (const IntegrationError& e) {
+    } catch (const CvodeError& e) {
       CHECK(e.flag_name() == "CV_RTFUNC_FAIL");
       CHECK(has(e.what(), "roots() threw"));
       CHECK(has(e.what(), "root function failed"));
@@ -326,15 +327,15 @@ TEST_CASE("bad input: CVODE failures arrive as IntegrationError with the flag an
     TestScene scene;
     (void)scene.add(Zyx(kMass), {.omega = {0.3, 2, 0.1}});
     auto o = opts(CvodeMethod::adams);
-    o.cvode.max_steps_per_call = 10;
-    o.cvode.rtol = 1e-10;
+    o.max_steps = 10;
+    o.rtol = 1e-10;
     SceneIntegrator integrator(scene, 0.0, o);
     try {
       (void)integrator.advance(100.0);
       FAIL("no error");
-    } catch (const IntegrationError& e) {
+    } catch (const CvodeError& e) {
       CHECK(e.flag_name() == "CV_TOO_MUCH_WORK");
-      CHECK(has(e.what(), "(max_steps_per_call = 10)"));
+      CHECK(has(e.what(), "(max_steps = 10)"));
       CHECK(e.time() > 0.0);
       CHECK(e.time() < 100.0);
     }
@@ -343,13 +344,13 @@ TEST_CASE("bad input: CVODE failures arrive as IntegrationError with the flag an
     TestScene scene;
     (void)scene.add(Ep(kMass), {.velocity = {1e3, 0, 0}, .omega = {0.3, 2, 0.1}});
     auto o = opts();
-    o.cvode.rtol = 1e-20;
-    o.cvode.atol = 1e-30;
+    o.rtol = 1e-20;
+    o.atol = 1e-30;
     SceneIntegrator integrator(scene, 0.0, o);
     try {
       (void)integrator.advance(1.0);
       FAIL("no error");
-    } catch (const IntegrationError& e) {
+    } catch (const CvodeError& e) {
       CHECK(e.flag_name() == "CV_TOO_MUCH_ACC");
       CHECK(has(e.what(), "CV_TOO_MUCH_ACC"));
     }
@@ -368,7 +369,7 @@ TEST_CASE("bad input: CVODE failures arrive as IntegrationError with the flag an
     try {
       (void)integrator.advance(1.0);
       FAIL("no error");
-    } catch (const IntegrationError& e) {
+    } catch (const CvodeError& e) {
       CHECK(e.flag_name() == "CV_ERR_FAILURE");
       CHECK(has(e.what(), "the local error test failed max_error_test_failures times"));
       INFO(e.what());

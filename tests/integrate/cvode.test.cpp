@@ -31,6 +31,7 @@
 
 using tumble::ConstVectorMap;
 using tumble::Cvode;
+using tumble::CvodeError;
 using tumble::CvodeLinearSolver;
 using tumble::CvodeMethod;
 using tumble::CvodeOptions;
@@ -316,7 +317,7 @@ CvodeOptions tolerances(CvodeMethod method, double tol) {
 /// Largest |y(t) - (cos t, -sin t)| over outputs every 0.5 up to 10, and the steps taken.
 std::pair<double, long> oscillator_error(CvodeMethod method, double tol) {
   CvodeOptions o = tolerances(method, tol);
-  o.max_steps_per_call = 100000;
+  o.max_steps = 100000;
   Cvode cvode(Oscillator{}, 0.0, Eigen::Vector2d(1.0, 0.0), o);
   std::vector<double> times;
   for (int k = 1; k <= 20; ++k) {
@@ -390,7 +391,7 @@ TEST_CASE("stiff linear system: BDF needs far fewer steps than Adams", "[integra
   const Eigen::Vector2d y_bdf = implicit.advance(t_end);
 
   CvodeOptions adams = tolerances(CvodeMethod::adams, 1e-8);
-  adams.max_steps_per_call = 1000000;
+  adams.max_steps = 1000000;
   Cvode explicit_(system, 0.0, y0, adams);
   const Eigen::Vector2d y_adams = explicit_.advance(t_end);
 
@@ -413,7 +414,7 @@ TEST_CASE("Robertson: analytic and difference-quotient Jacobians agree", "[integ
   o.method = CvodeMethod::bdf;
   o.rtol = 1e-6;
   o.atol = Eigen::Vector3d(1e-10, 1e-14, 1e-8);  // per component, as in cvRoberts_dns
-  o.max_steps_per_call = 5000;
+  o.max_steps = 5000;
   const Eigen::Vector3d y0(1.0, 0.0, 0.0);
 
   Cvode analytic(RobertsonWithJacobian{}, 0.0, y0, o);
@@ -462,7 +463,7 @@ TEST_CASE("dense, band and GMRES linear solvers agree with the exact heat soluti
     o.linear_solver = solver;
     o.upper_bandwidth = 1;
     o.lower_bandwidth = 1;
-    o.max_steps_per_call = 5000;
+    o.max_steps = 5000;
     Cvode cvode(std::move(system), 0.0, heat.initial(), o);
     const Eigen::VectorXd u = cvode.advance(t_end);
     stats = cvode.statistics();
@@ -493,7 +494,7 @@ TEST_CASE("bouncing ball: impact times match the closed form", "[integrate][cvod
     ball.impacts = &impacts;
     const double h = 10.0, t_end = 8.0;
     CvodeOptions o = tolerances(method, 1e-10);
-    o.max_steps_per_call = 10000;
+    o.max_steps = 10000;
     Cvode cvode(ball, 0.0, Eigen::Vector2d(h, 0.0), o);
     cvode.advance(t_end);
 
@@ -570,7 +571,7 @@ TEST_CASE("projection keeps a rotating unit vector on the sphere", "[integrate][
   const RotatingUnitVector system;
   const Eigen::Vector3d y0 = Eigen::Vector3d(1.0, 2.0, -0.5).normalized();
   CvodeOptions o = tolerances(CvodeMethod::bdf, 1e-5);
-  o.max_steps_per_call = 100000;
+  o.max_steps = 100000;
   const double t_end = 100.0;
 
   CvodeOptions with = o;
@@ -638,7 +639,7 @@ TEST_CASE("bad options throw std::invalid_argument naming them, before integrati
           "'max_order'");
   rejects(with([](CvodeOptions& o) { o.max_order = 6; }), "'max_order'");  // BDF
   rejects(with([](CvodeOptions& o) { o.max_order = -1; }), "'max_order'");
-  rejects(with([](CvodeOptions& o) { o.max_steps_per_call = -1; }), "'max_steps_per_call'");
+  rejects(with([](CvodeOptions& o) { o.max_steps = -1; }), "'max_steps'");
   rejects(with([](CvodeOptions& o) { o.initial_step = -0.1; }), "'initial_step'");
   rejects(with([](CvodeOptions& o) { o.min_step = -0.1; }), "'min_step'");
   rejects(with([](CvodeOptions& o) { o.max_step = 0.0; }), "'max_step'");
@@ -715,13 +716,13 @@ TEST_CASE("too much work: IntegrationError names CV_TOO_MUCH_WORK, the limit and
           "[integrate][cvode]") {
   const StiffLinear system;
   CvodeOptions o = tolerances(CvodeMethod::adams, 1e-8);
-  o.max_steps_per_call = 200;
-  const std::string limit = "(max_steps_per_call = 200)";
+  o.max_steps = 200;
+  const std::string limit = "(max_steps = 200)";
   Cvode cvode(system, 0.0, system.exact(0.0, 1.0, 0.5), o);
   try {
     cvode.advance(10.0);
     FAIL("no exception");
-  } catch (const IntegrationError& e) {
+  } catch (const CvodeError& e) {
     const std::string what = e.what();
     INFO(what);
     CHECK(e.flag() == CV_TOO_MUCH_WORK);
@@ -743,7 +744,7 @@ TEST_CASE("no per-call step limit by default: one long advance of a tumbling bod
   const TumblingBody body;
   const Eigen::Vector3d w0(0.05, 2.0, 0.05);  // near the intermediate axis
   CvodeOptions o = tolerances(CvodeMethod::bdf, 1e-10);
-  CHECK(o.max_steps_per_call == 0);
+  CHECK(o.max_steps == 0);
   SECTION("the default: the whole interval in one call") {
     Cvode cvode(body, 0.0, w0, o);
     const Eigen::Vector3d w = cvode.advance(50.0);
@@ -754,15 +755,15 @@ TEST_CASE("no per-call step limit by default: one long advance of a tumbling bod
     CHECK(std::abs(body.momentum(w) / body.momentum(w0) - 1.0) < 1e-6);
   }
   SECTION("an explicit limit stops it with an IntegrationError naming the limit") {
-    o.max_steps_per_call = 100;
+    o.max_steps = 100;
     Cvode cvode(body, 0.0, w0, o);
     try {
       cvode.advance(50.0);
       FAIL("no exception");
-    } catch (const IntegrationError& e) {
+    } catch (const CvodeError& e) {
       INFO(e.what());
       CHECK(e.flag_name() == "CV_TOO_MUCH_WORK");
-      CHECK(std::string(e.what()).find("(max_steps_per_call = 100)") != std::string::npos);
+      CHECK(std::string(e.what()).find("(max_steps = 100)") != std::string::npos);
       CHECK(e.time() > 0.0);
       CHECK(e.time() < 50.0);
       CHECK(cvode.statistics().steps == 100);
@@ -780,7 +781,7 @@ TEST_CASE("without a step limit, an integration that cannot progress stops, not 
   try {
     cvode.advance(t0 + 1.0);
     FAIL("no exception");
-  } catch (const IntegrationError& e) {
+  } catch (const CvodeError& e) {
     const std::string what = e.what();
     INFO(what);
     CHECK(e.flag_name() == "CV_TOO_MUCH_WORK");
@@ -822,7 +823,7 @@ TEST_CASE("a non-finite right-hand side is recoverable, then a clear failure",
     try {
       poisoned.advance(1.0);
       FAIL("no exception");
-    } catch (const IntegrationError& e) {
+    } catch (const CvodeError& e) {
       const std::string what = e.what();
       INFO(what);
       CHECK(what.find("non-finite") != std::string::npos);
@@ -848,7 +849,7 @@ TEST_CASE("a non-finite right-hand side is recoverable, then a clear failure",
   try {
     refusing.advance(1.0);
     FAIL("no exception");
-  } catch (const IntegrationError& e) {
+  } catch (const CvodeError& e) {
     INFO(e.what());
     CHECK(std::string(e.what()).find("state outside the chart") != std::string::npos);
   }
@@ -871,7 +872,7 @@ TEST_CASE("exceptions thrown by callbacks are rethrown as IntegrationError with 
   try {
     cvode.advance(2.0);
     FAIL("no exception");
-  } catch (const IntegrationError& e) {
+  } catch (const CvodeError& e) {
     INFO(e.what());
     CHECK(e.flag() == CV_RHSFUNC_FAIL);
     CHECK(e.flag_name() == "CV_RHSFUNC_FAIL");
@@ -892,7 +893,7 @@ TEST_CASE("exceptions thrown by callbacks are rethrown as IntegrationError with 
   try {
     roots.advance(2.0);
     FAIL("no exception");
-  } catch (const IntegrationError& e) {
+  } catch (const CvodeError& e) {
     CHECK(e.flag() == CV_RTFUNC_FAIL);
     CHECK(std::string(e.what()).find("boom in roots") != std::string::npos);
     CHECK_THROWS_AS(std::rethrow_exception(e.cause()), Boom);
@@ -907,7 +908,7 @@ TEST_CASE("exceptions thrown by callbacks are rethrown as IntegrationError with 
   try {
     jacobian.advance(1.0);
     FAIL("no exception");
-  } catch (const IntegrationError& e) {
+  } catch (const CvodeError& e) {
     CHECK(e.flag() == CV_LSETUP_FAIL);
     CHECK(std::string(e.what()).find("boom in jacobian") != std::string::npos);
     CHECK_THROWS_AS(std::rethrow_exception(e.cause()), Boom);
@@ -1018,7 +1019,7 @@ TEST_CASE("a system can be held by reference", "[integrate][cvode]") {
 TEST_CASE("no heap allocation during advance() once set up", "[integrate][cvode]") {
   SECTION("BDF, dense, analytic Jacobian") {
     CvodeOptions o = tolerances(CvodeMethod::bdf, 1e-8);
-    o.max_steps_per_call = 100000;
+    o.max_steps = 100000;
     Cvode cvode(OscillatorWithJacobian{}, 0.0, Eigen::Vector2d(1.0, 0.0), o);
     cvode.advance(0.1);  // CVODE finishes its own setup in the first call
     AllocationCounter counter;
@@ -1041,7 +1042,7 @@ TEST_CASE("no heap allocation during advance() once set up", "[integrate][cvode]
   SECTION("BDF with projection, band and GMRES") {
     CvodeOptions o = tolerances(CvodeMethod::bdf, 1e-6);
     o.projection = true;
-    o.max_steps_per_call = 100000;
+    o.max_steps = 100000;
     Cvode projected(RotatingUnitVector{}, 0.0, Eigen::Vector3d(1.0, 0.0, 0.0), o);
     projected.advance(0.1);
     CvodeOptions g = tolerances(CvodeMethod::bdf, 1e-6);

@@ -112,7 +112,8 @@ PendulumRun pendulum_period(const Pendulum& p, double theta0, double tol, int sw
   double a_prev = angle(scene.initial_state()), w_prev = 0;
   std::vector<double> crossings;
   for (int k = 1; k <= swings * 500 + 2; ++k) {
-    const tumble::SceneState& s = integrator.advance(k * dt);
+    integrator.advance(k * dt);
+    const tumble::SceneState& s = integrator.state();
     const double a = angle(s), w = tumble::omega(scene, id, s).x();
     if (a_prev > 0 && a <= 0) {
       auto h = [&](double x) {
@@ -256,7 +257,8 @@ TEST_CASE("reaction force at the tip of the top: m (a_g - g) from the centroid's
     Vector3d x[5];
     Vector3d reaction = Vector3d::Zero();
     for (int i = -2; i <= 2; ++i) {
-      const tumble::SceneState& s = integrator.advance(t + i * h);
+      integrator.advance(t + i * h);
+      const tumble::SceneState& s = integrator.state();
       x[i + 2] = tumble::centroid_position(scene, id, s);
       if (i == 0) {
         reaction = tumble::reaction_force(scene, id, s, t);

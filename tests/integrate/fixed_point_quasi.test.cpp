@@ -77,7 +77,8 @@ std::vector<Sample> samples(const SceneT& scene, tumble::BodyId<Body> id,
                              tumble::test::integrator_options(CvodeMethod::bdf, tol, 2000000));
   std::vector<Sample> r;
   for (const double t : times) {
-    const tumble::SceneState& s = integrator.advance(t);
+    integrator.advance(t);
+    const tumble::SceneState& s = integrator.state();
     r.push_back({tumble::rotation(scene, id, s), tip_force(t, s)});
   }
   return r;

@@ -43,6 +43,7 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Eigen::VectorXd;
 using tumble::Bodies;
+using tumble::CvodeError;
 using tumble::CvodeMethod;
 using tumble::InitialState;
 using tumble::IntegrationError;
@@ -139,7 +140,7 @@ TEST_CASE("SceneIntegrator: bad input", "[integrate][scene_integrator]") {
   SECTION("bad CVODE options are CVODE's") {
     scene.add(EP(tumbling_mass()));
     SceneIntegratorOptions o;
-    o.cvode.rtol = -1.0;
+    o.rtol = -1.0;
     REQUIRE_THROWS_WITH(SceneIntegrator(scene, 0.0, o), TUMBLE_CONTAINS("'rtol'"));
   }
 }
@@ -164,7 +165,8 @@ DriftRun drift_run(CvodeMethod method, bool project, bool stabilize, double tol)
   SceneIntegrator integrator(scene, 0.0, o);
   DriftRun r;
   for (int k = 1; k <= 50; ++k) {
-    const SceneState& y = integrator.advance(1.0 * k);
+    integrator.advance(1.0 * k);
+    const SceneState& y = integrator.state();
     r.max_drift = std::max(r.max_drift, tumble::constraint_drift(scene, y));
     if (k <= 10) {
       r.early_drift = r.max_drift;
@@ -227,12 +229,13 @@ StiffRun stiff_run(CvodeMethod method, double t_end, long max_steps) {
                                          {.stiffness = 1e6, .damping = 2e4, .rest_length = 0.0}));
   scene.add_load(h, tumble::UniformGravity(Vector3d(0, 0, -9.81)));
   SceneIntegratorOptions o = options(method, 1e-8);
-  o.cvode.max_steps_per_call = max_steps;
+  o.max_steps = max_steps;
   SceneIntegrator integrator(scene, 0.0, o);
   StiffRun r;
   try {
-    r.y = integrator.advance(t_end).y;
-  } catch (const IntegrationError& e) {
+    integrator.advance(t_end);
+    r.y = integrator.state().y;
+  } catch (const CvodeError& e) {
     r.failed = true;
     r.flag = e.flag_name();
   }

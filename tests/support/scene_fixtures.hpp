@@ -29,10 +29,10 @@ inline Eigen::Matrix3d rot(double angle, const Eigen::Vector3d& axis) {
 inline SceneIntegratorOptions integrator_options(CvodeMethod method, double tol,
                                                  long max_steps = 1000000) {
   SceneIntegratorOptions o;
-  o.cvode.method = method;
-  o.cvode.rtol = tol;
-  o.cvode.atol = tol;
-  o.cvode.max_steps_per_call = max_steps;
+  o.method = method;
+  o.rtol = tol;
+  o.atol = tol;
+  o.max_steps = max_steps;
   return o;
 }
 

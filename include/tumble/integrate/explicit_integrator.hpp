@@ -21,10 +21,11 @@
 //   without events (OdeintOptions::interpolate_outputs): the steps run free to the last output
 //   time and the outputs inside a step are read off its dense output, on its chart.
 // After y changes between steps the derivative at the step's start is evaluated again (dopri5
-// loses its first-same-as-last saving). Stiffness: past OdeintOptions::max_steps attempts in one
-// advance(), the Jacobian's largest eigenvalue modulus rho is estimated; with h rho > 1 for the
-// mean step h and at least 10 % of the attempts rejected, StiffSceneError names BDF, otherwise
-// ExplicitIntegrationError. Never a run that does not end, never a NaN state: non-finite trial
+// loses its first-same-as-last saving). Stiffness: every OdeintOptions::stiffness_window
+// attempts, and when a step budget (max_steps) is spent, a window with at least 10 % of its
+// attempts rejected has the Jacobian's largest eigenvalue modulus rho estimated; with h rho > 1
+// for the mean step h, StiffSceneError names BDF (a spent budget otherwise throws
+// ExplicitIntegrationError). Never a run that does not end, never a NaN state: non-finite trial
 // states are rejected, and a step size at the rounding level of t throws.
 
 #include <algorithm>
@@ -63,6 +64,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   using Vec = Eigen::Matrix<double, N, 1>;
 
  public:
+  using Options = OdeintOptions;
+  using Statistics = OdeintStatistics;
+
   /// Integrate `scene` from t0 starting at the scene's initial state. The scene must outlive
   /// the integrator; the integrator only reads it.
   OdeintIntegrator(const SceneT& scene, double t0, OdeintOptions options = {})
@@ -104,8 +108,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   OdeintIntegrator(SceneT&&, double, OdeintOptions = {}) = delete;
   OdeintIntegrator(SceneT&&, double, const SceneState&, OdeintOptions = {}) = delete;
 
-  /// Integrates to t_out (>= time()) and returns the state there (valid until the next call).
-  const SceneState& advance(double t_out) {
+  /// Integrates to t_out (>= time()). The state there is state(); save() keeps a copy.
+  void advance(double t_out) {
     if (!std::isfinite(t_out) || t_out < t_) {
       throw std::invalid_argument("tumble::OdeintIntegrator::advance: t_out = " + num(t_out) +
                                   " must be finite and not before the current time " + num(t_));
@@ -114,8 +118,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     while (t_ < t_out) {
       std::visit([&](auto& s) { step_with(s, t_out); }, stepper_);
     }
-
-    return sync();
+    sync();
   }
 
   /// observer(t, state) at each output time (non-decreasing, not before time(), validated before
@@ -140,7 +143,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
             }
           }
           for (const double t : times) {
-            observer(t, std::as_const(advance(t)));
+            advance(t);
+            observer(t, std::as_const(state_));
           }
         },
         stepper_);
@@ -171,14 +175,29 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
                                   e.what());
     }
     t_ = t;
+    window_ = Run{.t_start = t};
     h_ = options_.initial_step > 0.0 ? options_.initial_step : initial_step();
     events_at(t_, x_, ev_old_);
     sync();
   }
 
-  /// The current state: the continuous vector and the chart bases.
+  /// The current state, the continuous vector and the chart bases: a view that every call that
+  /// integrates changes. To keep a state, save() it.
   [[nodiscard]] const SceneState& state() const { return state_; }
+  /// A copy of the current state, to keep (reset() restarts from it). save(into) copies into a
+  /// state of this scene without allocating.
+  [[nodiscard]] SceneState save() const {
+    SceneState s;
+    save(s);
+    return s;
+  }
+  void save(SceneState& into) const {
+    into.y = map(x_);
+    into.base = base_;
+  }
   [[nodiscard]] double time() const { return t_; }
+  /// The step size the controller proposes for the next step (kept across output times).
+  [[nodiscard]] double step_size() const { return h_; }
   [[nodiscard]] OdeintStatistics statistics() const {
     OdeintStatistics s = stats_;
     for (const long n : switches_) {
@@ -272,28 +291,34 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   }
 
   static OdeintOptions checked(const SceneT& scene, const OdeintOptions& o) {
-    validate(o);
+    validate(o, scene.size());
     if constexpr (N != Eigen::Dynamic) {
       if (scene.size() != N) {
         throw std::invalid_argument(
             "tumble::OdeintIntegrator<SceneT, N>: N = " + std::to_string(N) +
             ", but the scene has size " + std::to_string(scene.size()) +
-            " (Scene::size()); use N = scene.size() or Eigen::Dynamic");
+            " (Scene::size()): give N as tumble::state_size<SceneT, Body...> with one Body for "
+            "each body of the scene, or Eigen::Dynamic");
       }
     }
     return o;
   }
 
+  /// The stepper of the method, with the error test of the options' tolerances (a per-entry
+  /// atol is read from options_, which lives as long as the stepper).
   Stepper make_stepper() const {
+    const auto* v = std::get_if<Eigen::VectorXd>(&options_.atol);
+    const double atol = v ? 0.0 : std::get<double>(options_.atol);
+    const double* entries = v ? v->data() : nullptr;
     switch (options_.method) {
       case OdeintMethod::dopri5:
-        return detail::Dopri5<State>(options_.atol, options_.rtol);
+        return detail::Dopri5<State>(atol, options_.rtol, entries);
       case OdeintMethod::cash_karp54:
-        return detail::CashKarp54<State>(options_.atol, options_.rtol);
+        return detail::CashKarp54<State>(atol, options_.rtol, entries);
       case OdeintMethod::fehlberg78:
         break;
     }
-    return detail::Fehlberg78<State>(options_.atol, options_.rtol);
+    return detail::Fehlberg78<State>(atol, options_.rtol, entries);
   }
 
   void check_state(const SceneState& s, double t) const {
@@ -323,6 +348,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       Eigen::VectorXd no_error;  // empty: no local error estimate to project (no allocation)
       tumble::project(*scene_, map(x_), corr_, no_error);
       map(x_) += corr_;
+      ++stats_.projections;
       changed = true;
     }
     Eigen::Map<Vec> y = map(x_);
@@ -371,8 +397,13 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     const double p = std::visit([](const auto& s) { return double(s.order); }, stepper_);
     auto y1 = map(x_tmp_);
     auto f1 = map(x_new_);
-    return detail::initial_step(evaluator(), map(std::as_const(x_)), map(std::as_const(dxdt_)), y1,
-                                f1, options_.atol, options_.rtol, p, options_.max_step);
+    return std::visit(
+        [&](const auto& atol) {
+          return detail::initial_step(evaluator(), map(std::as_const(x_)),
+                                      map(std::as_const(dxdt_)), y1, f1, atol, options_.rtol, p,
+                                      options_.max_step);
+        },
+        options_.atol);
   }
 
   /// f(y, f) for the numerics of detail/explicit_numerics.hpp: false when y cannot be evaluated.
@@ -395,10 +426,14 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       S& stepper, double t_out, OnStep&& on_step = [](double, double) {}) {
     const System sys{this};
     for (;;) {
-      if (run_.attempts >= options_.max_steps) {
+      if (options_.max_steps > 0 && run_.attempts >= options_.max_steps) {
         out_of_budget(t_out);
       }
+      if (options_.stiffness_window > 0 && window_.attempts >= options_.stiffness_window) {
+        stiffness_test(t_out);
+      }
       ++run_.attempts;
+      ++window_.attempts;
       // Step to t_out exactly when it is within reach.
       const bool to_end = t_out - t_ <= std::min(h_, options_.max_step);
       const double h_try = to_end ? t_out - t_ : std::min(h_, options_.max_step);
@@ -412,6 +447,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
         ok = stepper.try_step(sys, x_, dxdt_, t, x_new_, dxdt_new_, h);
         if (!ok) {
           ++run_.rejected;
+          ++window_.rejected;
         } else if (const double f = acceptable(x_new_); f < 1.0) {
           ok = false;
           h = f * h_try;
@@ -419,7 +455,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       } catch (const NonFiniteError&) {
         if (!deriv_valid_) {  // the state itself cannot be evaluated: nothing to retry
           throw ExplicitIntegrationError(
-              "tumble::OdeintIntegrator: the right-hand side is not finite at t = " + num(t_), t_);
+              "tumble::OdeintIntegrator: the right-hand side is not finite at t = " + num(t_),
+              IntegrationFailure::callback, t_);
         }
         ok = false;
         h = 0.25 * h_try;
@@ -431,13 +468,14 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
               "tumble::OdeintIntegrator: the step size fell to " + num(h) +
                   ", below the rounding level of t = " + num(t_) +
                   " (a state the scene cannot be evaluated at, or a singularity, ahead)",
-              t_);
+              IntegrationFailure::step_size, t_);
         }
         h_ = h;
         continue;
       }
       ++stats_.steps;
       ++run_.accepted;
+      ++window_.accepted;
       // Stepped to t_out exactly: keep the controller's longer suggestion for the next step.
       const double t_new = to_end ? t_out : t;
       h_ = to_end ? std::max(h, h_) : h;
@@ -542,6 +580,41 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
                                    v, y1, f1);
   }
 
+  /// True when the attempts of `r` look like those of an explicit method on a stiff scene: at
+  /// least kStiffRejections of them failed the error test and the mean step h has
+  /// h rho > kStiffHRho. Sets h rho.
+  bool looks_stiff(const Run& r, double& h_rho) {
+    h_rho = 0.0;
+    if (static_cast<double>(r.rejected) < kStiffRejections * static_cast<double>(r.attempts)) {
+      return false;  // no spectral radius needed: the test costs nothing
+    }
+    const double mean_h = r.accepted > 0 ? (t_ - r.t_start) / static_cast<double>(r.accepted) : 0.0;
+    h_rho = mean_h * spectral_radius();
+    return h_rho > kStiffHRho;
+  }
+
+  /// The stiffness test of a full window (OdeintOptions::stiffness_window): throws
+  /// StiffSceneError, or starts the next window.
+  void stiffness_test(double t_out) {
+    double h_rho = 0.0;
+    if (looks_stiff(window_, h_rho)) {
+      throw StiffSceneError(
+          "tumble::OdeintIntegrator::advance: the scene looks stiff at t = " + num(t_) + ": of " +
+              std::to_string(window_.attempts) + " step attempts since t = " +
+              num(window_.t_start) + ", " + std::to_string(window_.rejected) +
+              " failed the error test, and the mean step h times the largest eigenvalue modulus "
+              "rho of the Jacobian is h rho = " +
+              num(h_rho) +
+              ": the steps are held at the method's stability bound, not set by the accuracy "
+              "asked for (t_out = " +
+              num(t_out) +
+              "). Integrate it with tumble::SceneIntegrator and CvodeMethod::bdf (BDF, "
+              "implicit), or let tumble::AutoIntegrator switch",
+          t_);
+    }
+    window_ = Run{.t_start = t_};
+  }
+
   [[noreturn]] void out_of_budget(double t_out) {
     const double mean_h =
         run_.accepted > 0 ? (t_ - run_.t_start) / static_cast<double>(run_.accepted) : 0.0;
@@ -551,22 +624,20 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
         " failed the error test; OdeintOptions::max_steps = " + std::to_string(options_.max_steps) +
         ") took t from " + num(run_.t_start) + " only to " + num(t_) + " of t_out = " + num(t_out) +
         ", with steps of " + num(mean_h) + " on average";
-    const double rho = spectral_radius();
-    if (mean_h * rho > kStiffHRho && static_cast<double>(run_.rejected) >=
-                                         kStiffRejections * static_cast<double>(run_.attempts)) {
+    double h_rho = 0.0;
+    if (looks_stiff(run_, h_rho)) {
       throw StiffSceneError(
-          what + ". The scene looks stiff: the Jacobian has an eigenvalue of modulus " + num(rho) +
-              ", so the steps are held near the method's stability bound (h rho = " +
-              num(mean_h * rho) +
+          what + ". The scene looks stiff: the Jacobian has an eigenvalue of modulus " +
+              num(h_rho / mean_h) +
+              ", so the steps are held near the method's stability bound (h rho = " + num(h_rho) +
               "), not set by the accuracy asked for, and the controller "
               "keeps stepping over it. Integrate it with tumble::SceneIntegrator and "
               "CvodeMethod::bdf (BDF, implicit)",
           t_);
     }
-    throw ExplicitIntegrationError(
-        what + ". Raise OdeintOptions::max_steps for longer intervals, or integrate to "
-               "intermediate times",
-        t_);
+    throw ExplicitIntegrationError(what + ". Raise OdeintOptions::max_steps for longer intervals "
+                                          "(0: no limit), or integrate to intermediate times",
+                                   IntegrationFailure::step_budget, t_);
   }
 
   /// Copies the current state into state_; no allocation.
@@ -581,8 +652,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   SceneWorkspace<SceneT> ws_;
   Stepper stepper_;
   State x_{}, dxdt_{}, x_old_{}, dxdt_old_{}, x_new_{}, dxdt_new_{}, x_tmp_{};
-  bool deriv_valid_ = false;  ///< dxdt_ is x' at x_
-  Run run_;
+  bool deriv_valid_ = false;             ///< dxdt_ is x' at x_
+  Run run_;                              ///< this advance (or output interval): the step budget
+  Run window_;                           ///< the attempts since the last stiffness test
   double t_ = 0.0, h_ = 0.0;             ///< time, next step size
   Vec corr_;                             ///< the projection's correction
   Eigen::VectorXd g_, g0_;               ///< chart roots at a step's end and start

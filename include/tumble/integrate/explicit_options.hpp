@@ -1,13 +1,15 @@
 #pragma once
 // The options and statistics of tumble::OdeintIntegrator (explicit_integrator.hpp), without
-// Boost: the method (OdeintMethod), tolerances and step options (OdeintOptions), the counters
-// (OdeintStatistics), and validate(), which names a bad option in a std::invalid_argument before
-// anything is integrated.
+// Boost: the method (OdeintMethod), the shared tolerances and step budget (integrate/common.hpp)
+// and Odeint's own options (OdeintOptions), the counters (OdeintStatistics), and validate(),
+// which names a bad option in a std::invalid_argument before anything is integrated.
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+
+#include "tumble/integrate/common.hpp"
 
 namespace tumble {
 
@@ -23,18 +25,30 @@ enum class OdeintMethod {
   cash_karp54,
 };
 
-/// What OdeintIntegrator does. Every option is validated when the integrator is constructed.
+/// What OdeintIntegrator does: the vocabulary both integrators share (integrate/common.hpp),
+/// then Odeint's own options. Every option is validated when the integrator is constructed.
 struct OdeintOptions {
-  OdeintMethod method = OdeintMethod::fehlberg78;
-  /// Odeint's error test per component i: |err_i| <= atol + rtol (|y_i| + h |y'_i|).
-  double rtol = 1e-8;                                         ///< > 0
-  double atol = 1e-8;                                         ///< >= 0
-  double max_step = std::numeric_limits<double>::infinity();  ///< > 0
-  double initial_step = 0.0;  ///< 0: estimated (Hairer, Norsett and Wanner, Sec. II.4)
+  // --- shared with SceneIntegratorOptions (integrate/common.hpp) ---
+  /// Odeint's error test per entry i: |err_i| <= atol_i + rtol (|y_i| + h |y'_i|), in the
+  /// maximum norm over i.
+  double rtol = SharedDefaults::rtol;             ///< > 0
+  AbsoluteTolerance atol = SharedDefaults::atol;  ///< >= 0: one value, or one per entry of y
   /// Step attempts (accepted and rejected) allowed in one advance(), or between two output times
-  /// of integrate(). Past it the integrator throws: StiffSceneError when the steps looked like
-  /// those of an explicit method on a stiff scene, ExplicitIntegrationError otherwise.
-  long max_steps = 100000;
+  /// of integrate(); 0: no limit (the default). Past it the integrator throws: StiffSceneError
+  /// when the steps looked like those of an explicit method on a stiff scene,
+  /// ExplicitIntegrationError (IntegrationFailure::step_budget) otherwise.
+  long max_steps = SharedDefaults::max_steps;
+  double initial_step = 0.0;  ///< 0: estimated (Hairer, Norsett and Wanner, Sec. II.4)
+  double max_step = std::numeric_limits<double>::infinity();  ///< > 0
+  // --- Odeint only ---
+  OdeintMethod method = OdeintMethod::fehlberg78;
+  /// The stiffness test, every this many step attempts (over advance() calls; 0: never). When
+  /// at least 10 % of the attempts of the window failed the error test, the largest eigenvalue
+  /// modulus rho of the Jacobian is estimated (about 30 right-hand sides), and with h rho > 1
+  /// for the window's mean step h the integrator throws StiffSceneError: the steps are held at
+  /// the method's stability bound, not set by the accuracy asked for. Without rejections the
+  /// test costs nothing. The front door (integrate/auto.hpp) switches to BDF on it.
+  long stiffness_window = 1000;
   /// integrate() with Dormand-Prince on a scene without events: step freely and read the output
   /// times off Odeint's dense output (its continuous extension, order 4) instead of stepping to
   /// each of them. When output times are denser than the steps the accuracy needs, this saves
@@ -51,35 +65,30 @@ struct OdeintOptions {
   bool stabilize_quaternions = false;
 };
 
-/// Counters since construction.
+/// The shared counters (integrate/common.hpp), since construction.
 struct OdeintStatistics {
   long steps = 0;           ///< accepted steps
   long rejected_steps = 0;  ///< failed error tests, non-finite trial states, too-deep chart steps
   long rhs_evals = 0;       ///< right-hand side evaluations, including event location
   long chart_switches = 0;  ///< re-centerings and MRP shadow switches
+  long projections = 0;     ///< projections of Euler parameters onto |p| = 1 (one per step)
   long events = 0;          ///< user events located and acted on
 };
+static_assert(IntegratorStatisticsLike<OdeintStatistics>);
+static_assert(IntegratorOptionsLike<OdeintOptions>);
 
 /// Throws std::invalid_argument naming the first bad option.
-inline void validate(const OdeintOptions& o) {
-  const auto bad = [](const char* name, double v, const char* rule) {
-    throw std::invalid_argument(std::string("tumble::OdeintOptions: ") + name + " = " +
-                                std::to_string(v) + ", but it must be " + rule);
-  };
-  if (!(o.rtol > 0.0) || !std::isfinite(o.rtol)) {
-    bad("rtol", o.rtol, "finite and > 0");
+inline void validate(const OdeintOptions& o, long n = -1) {
+  detail::validate_shared("tumble::OdeintOptions", o.rtol, o.atol, o.max_steps, o.initial_step,
+                          o.max_step, n, /*atol_may_be_zero=*/true);
+  if (o.method != OdeintMethod::fehlberg78 && o.method != OdeintMethod::dopri5 &&
+      o.method != OdeintMethod::cash_karp54) {
+    throw std::invalid_argument("tumble::OdeintOptions: 'method' is not an OdeintMethod");
   }
-  if (!(o.atol >= 0.0) || !std::isfinite(o.atol)) {
-    bad("atol", o.atol, "finite and >= 0");
-  }
-  if (!(o.max_step > 0.0)) {
-    bad("max_step", o.max_step, "> 0");
-  }
-  if (!(o.initial_step >= 0.0) || !std::isfinite(o.initial_step)) {
-    bad("initial_step", o.initial_step, "finite and >= 0 (0: estimated)");
-  }
-  if (o.max_steps < 1) {
-    bad("max_steps", static_cast<double>(o.max_steps), ">= 1");
+  if (o.stiffness_window < 0) {
+    throw std::invalid_argument("tumble::OdeintOptions: 'stiffness_window' must be >= 0, 0 for "
+                                "no stiffness test (got " +
+                                std::to_string(o.stiffness_window) + ")");
   }
 }
 

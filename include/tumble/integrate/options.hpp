@@ -1,7 +1,8 @@
 #pragma once
 // The options and statistics of tumble::Cvode, without SUNDIALS: the method (CvodeMethod), the
-// linear solver of BDF's Newton iteration (CvodeLinearSolver, CvodePreconditioning), the
-// tolerances, step, iteration and projection options (CvodeOptions), the counters
+// linear solver of BDF's Newton iteration (CvodeLinearSolver, CvodePreconditioning), CVODE's own
+// step, iteration and projection options (CvodeSolverOptions), those with the shared tolerances
+// and step budget of integrate/common.hpp (CvodeOptions), the counters
 // (CvodeStatistics), and validate(), which checks every option that does not depend on the system
 // before anything is integrated and names a bad one in a std::invalid_argument.
 //
@@ -18,6 +19,8 @@
 #include <variant>
 
 #include <Eigen/Core>
+
+#include "tumble/integrate/common.hpp"
 
 namespace tumble {
 
@@ -38,27 +41,12 @@ enum class CvodeLinearSolver {
 /// Side of the system's preconditioner in GMRES (ignored when the system has none).
 enum class CvodePreconditioning { none, left, right };
 
-/// Options of a Cvode integrator. Defaults are CVODE's own, except the method (BDF) and the
-/// per-call step limit (none; CVODE's is 500).
-/// Every option is validated when the integrator is constructed, before anything is integrated;
-/// a bad one throws std::invalid_argument naming it.
-struct CvodeOptions {
-  CvodeMethod method = CvodeMethod::bdf;
-  double rtol = 1e-6;  ///< relative tolerance, > 0
-  /// absolute tolerance: one value > 0, or one per component (all > 0)
-  std::variant<double, Eigen::VectorXd> atol = 1e-8;
+/// CVODE's own options, apart from the vocabulary both integrators share (integrate/common.hpp)
+/// and the method: what SceneIntegratorOptions::cvode holds, and what CvodeOptions adds to the
+/// shared options. Defaults are CVODE's own.
+struct CvodeSolverOptions {
   int max_order = 0;  ///< 0: the method's maximum (Adams 12, BDF 5)
-  /// Internal steps allowed in one call of CVode(), i.e. in one advance() or between two output
-  /// times of integrate() (CVodeSetMaxNumSteps); more throws IntegrationError CV_TOO_MUCH_WORK
-  /// naming this limit. 0 (the default): no limit, however long the interval. Without a limit an
-  /// integration still ends: one that cannot succeed stops on CVODE's error-test or convergence
-  /// failures, and one that stalls (steps at the rounding level of t) is stopped by tumble with
-  /// CV_TOO_MUCH_WORK. There is no total budget: set this to bound the work of one call, e.g. of
-  /// Adams on a stiff problem, which progresses but with tiny steps.
-  long max_steps_per_call = 0;
-  double initial_step = 0.0;  ///< 0: estimated by CVODE
   double min_step = 0.0;
-  double max_step = std::numeric_limits<double>::infinity();
   std::optional<double> stop_time;  ///< never step past it (CVodeSetStopTime)
 
   CvodeLinearSolver linear_solver = CvodeLinearSolver::dense;  ///< BDF only
@@ -74,7 +62,6 @@ struct CvodeOptions {
   int max_nonlinear_iterations = 3;   ///< per nonlinear solve (CVodeSetMaxNonlinIters)
   int max_convergence_failures = 10;  ///< per step (CVodeSetMaxConvFails)
 
-  bool projection = false;            ///< project with System::project() (BDF only)
   bool project_error = true;          ///< project the error estimate too (CVodeSetProjErrEst)
   double projection_tolerance = 0.1;  ///< epsProj handed to project() (CVodeSetEpsProj)
   long projection_frequency = 1;      ///< project every this many steps (CVodeSetProjFrequency)
@@ -84,6 +71,34 @@ struct CvodeOptions {
   /// memory instead of one N_VLinearSum per pair. Same results to rounding; false: SUNDIALS'
   /// default (one operation per call).
   bool fused_vector_operations = true;
+};
+
+/// Options of a Cvode integrator: the shared vocabulary (integrate/common.hpp), the method, the
+/// projection switch and CVODE's own options (the base). Defaults are CVODE's own, except the
+/// method (BDF), the tolerances (the shared defaults) and the step budget (none; CVODE's is 500).
+/// Every option is validated when the integrator is constructed, before anything is integrated;
+/// a bad one throws std::invalid_argument naming it.
+struct CvodeOptions : CvodeSolverOptions {
+  CvodeMethod method = CvodeMethod::bdf;
+  double rtol = SharedDefaults::rtol;  ///< relative tolerance, > 0
+  /// absolute tolerance: one value > 0, or one per component (all > 0)
+  AbsoluteTolerance atol = SharedDefaults::atol;
+  /// Internal steps allowed in one call of CVode(), i.e. in one advance() or between two output
+  /// times of integrate() (CVodeSetMaxNumSteps); more throws CvodeError CV_TOO_MUCH_WORK
+  /// (IntegrationFailure::step_budget) naming this limit. 0 (the default): no limit, however
+  /// long the interval. Without a limit an integration still ends: one that cannot succeed
+  /// stops on CVODE's error-test or convergence failures, and one that stalls (steps at the
+  /// rounding level of t) is stopped by tumble with CV_TOO_MUCH_WORK. Set this to bound the work
+  /// of one call, e.g. of Adams on a stiff problem, which progresses but with tiny steps.
+  long max_steps = SharedDefaults::max_steps;
+  double initial_step = 0.0;  ///< 0: estimated by CVODE
+  double max_step = std::numeric_limits<double>::infinity();
+
+  bool projection = false;  ///< project with System::project() (BDF only)
+
+  /// The CVODE-only part (the base), e.g. to copy into SceneIntegratorOptions::cvode.
+  [[nodiscard]] CvodeSolverOptions& solver() { return *this; }
+  [[nodiscard]] const CvodeSolverOptions& solver() const { return *this; }
 };
 
 /// Counters of a Cvode integrator, totals since construction (across reinitializations).
@@ -130,44 +145,16 @@ inline void validate(const CvodeOptions& o, int n, double t0) {
   if (o.method != CvodeMethod::adams && o.method != CvodeMethod::bdf) {
     fail("'method' is not a CvodeMethod");
   }
-  if (!(std::isfinite(o.rtol) && o.rtol > 0.0)) {
-    fail("'rtol' must be finite and > 0 (got " + num(o.rtol) + ")");
-  }
-  if (const auto* a = std::get_if<double>(&o.atol)) {
-    if (!(std::isfinite(*a) && *a > 0.0)) {
-      fail("'atol' must be finite and > 0 (got " + num(*a) + ")");
-    }
-  } else {
-    const auto& v = std::get<Eigen::VectorXd>(o.atol);
-    if (v.size() != n) {
-      fail("'atol' per component must have the system size " + std::to_string(n) + " (got " +
-           std::to_string(v.size()) + ")");
-    }
-    for (Eigen::Index i = 0; i < v.size(); ++i) {
-      if (!(std::isfinite(v[i]) && v[i] > 0.0)) {
-        fail("'atol' component " + std::to_string(i) + " must be finite and > 0 (got " + num(v[i]) +
-             ")");
-      }
-    }
-  }
+  detail::validate_shared("tumble::CvodeOptions", o.rtol, o.atol, o.max_steps, o.initial_step,
+                          o.max_step, n, /*atol_may_be_zero=*/false);
   const int order_limit = o.method == CvodeMethod::adams ? 12 : 5;
   if (o.max_order < 0 || o.max_order > order_limit) {
     fail("'max_order' must be in [1, " + std::to_string(order_limit) + "] for " +
          (o.method == CvodeMethod::adams ? "Adams" : "BDF") + ", or 0 for the maximum (got " +
          std::to_string(o.max_order) + ")");
   }
-  if (o.max_steps_per_call < 0) {
-    fail("'max_steps_per_call' must be >= 0, 0 for no limit (got " +
-         std::to_string(o.max_steps_per_call) + ")");
-  }
-  if (!(std::isfinite(o.initial_step) && o.initial_step >= 0.0)) {
-    fail("'initial_step' must be finite and >= 0 (got " + num(o.initial_step) + ")");
-  }
   if (!(std::isfinite(o.min_step) && o.min_step >= 0.0)) {
     fail("'min_step' must be finite and >= 0 (got " + num(o.min_step) + ")");
-  }
-  if (!(o.max_step > 0.0)) {  // also rejects NaN; +inf means no bound
-    fail("'max_step' must be > 0 (got " + num(o.max_step) + ")");
   }
   if (o.min_step > o.max_step) {
     fail("'min_step' (" + num(o.min_step) + ") must not exceed 'max_step' (" + num(o.max_step) +
@@ -235,14 +222,5 @@ inline void validate(const CvodeOptions& o, int n, double t0) {
     }
   }
 }
-
-namespace detail {
-
-/// The per-call step limit the options ask for, 0 for none.
-[[nodiscard]] inline long step_limit_per_call(const CvodeOptions& o) noexcept {
-  return o.max_steps_per_call;
-}
-
-}  // namespace detail
 
 }  // namespace tumble

@@ -20,6 +20,7 @@
 // A NonFiniteError met in the right-hand side becomes a recoverable error: CVODE retries with a
 // smaller step, and reports an IntegrationError if it cannot recover.
 
+#include <limits>
 #include <optional>
 #include <span>
 #include <stdexcept>
@@ -28,6 +29,7 @@
 #include <vector>
 
 #include "tumble/core/errors.hpp"
+#include "tumble/integrate/common.hpp"
 #include "tumble/integrate/cvode.hpp"
 #include "tumble/integrate/detail/state_check.hpp"
 #include "tumble/integrate/errors.hpp"
@@ -42,11 +44,22 @@
 
 namespace tumble {
 
-/// Options of a SceneIntegrator: CVODE's, plus how Euler parameters keep their norm.
+/// Options of a SceneIntegrator: the vocabulary both integrators share (integrate/common.hpp),
+/// CVODE's method and own options, and how Euler parameters keep their norm.
 struct SceneIntegratorOptions {
-  /// CVODE's options. With CvodeLinearSolver::band and the bandwidths left at -1, the scene's
+  // --- shared with OdeintOptions (integrate/common.hpp) ---
+  double rtol = SharedDefaults::rtol;             ///< relative tolerance, > 0
+  AbsoluteTolerance atol = SharedDefaults::atol;  ///< one value > 0, or one per entry of y
+  /// Internal steps allowed in one advance(), or between two output times of integrate()
+  /// (CvodeOptions::max_steps); 0: no limit.
+  long max_steps = SharedDefaults::max_steps;
+  double initial_step = 0.0;  ///< 0: estimated by CVODE
+  double max_step = std::numeric_limits<double>::infinity();
+  // --- CVODE only ---
+  CvodeMethod method = CvodeMethod::bdf;
+  /// CVODE's own options. With CvodeLinearSolver::band and the bandwidths left at -1, the scene's
   /// own half-bandwidth is used (Scene::half_bandwidth).
-  CvodeOptions cvode{};
+  CvodeSolverOptions cvode{};
   /// With BDF: project Euler parameters onto their constraint after each step. With Adams the
   /// Baumgarte stabilization is used (CVODE cannot project with Adams).
   bool project_quaternions = true;
@@ -54,12 +67,32 @@ struct SceneIntegratorOptions {
   /// stabilize |p| = 1 with Baumgarte terms in the constraint acceleration (scene/rhs.hpp). Off,
   /// the constraint drifts freely (for studies of the drift itself).
   bool stabilize_quaternions = true;
+
+  /// The options of the Cvode<System> underneath (without the projection, which the integrator
+  /// sets from the scene).
+  [[nodiscard]] CvodeOptions cvode_options() const {
+    CvodeOptions o;
+    o.solver() = cvode;
+    o.method = method;
+    o.rtol = rtol;
+    o.atol = atol;
+    o.max_steps = max_steps;
+    o.initial_step = initial_step;
+    o.max_step = max_step;
+    return o;
+  }
 };
 
-/// CVODE's counters plus the scene's chart switches.
+/// The shared counters (integrate/common.hpp) and CVODE's own (the base) with the scene's chart
+/// switches. steps, rhs_evals and projections are CVODE's; rejected_steps counts its failed
+/// error tests and failed nonlinear solves, each followed by a retry with a smaller step.
 struct SceneStatistics : CvodeStatistics {
+  long rejected_steps = 0;
   long chart_switches = 0;  ///< re-centerings and MRP shadow switches since construction
+  long events = 0;          ///< user events acted on (their actions called)
 };
+static_assert(IntegratorStatisticsLike<SceneStatistics>);
+static_assert(IntegratorOptionsLike<SceneIntegratorOptions>);
 
 namespace detail {
 
@@ -117,6 +150,9 @@ template <class SceneT> class SceneSystem {
     const auto& events = scene_->events();
     const std::size_t first = scene_->chart_bodies().size();
     for (std::size_t i = 0; i < events.size(); ++i) {
+      if (which[first + i] != 0) {
+        ++events_;
+      }
       if (which[first + i] != 0 && events[i].action) {
         event_state_.y = y;
         event_state_.base = base_;
@@ -183,6 +219,7 @@ template <class SceneT> class SceneSystem {
   [[nodiscard]] std::span<const Matrix3<double>> bases() const { return base_; }
   void set_bases(const ChartBases& base) { base_ = base; }
   [[nodiscard]] long switches(int id) const { return switches_[static_cast<std::size_t>(id)]; }
+  [[nodiscard]] long events() const { return events_; }
   [[nodiscard]] long switches() const {
     long n = 0;
     for (const long s : switches_) {
@@ -198,12 +235,16 @@ template <class SceneT> class SceneSystem {
   ChartBases base_;             ///< the discrete part of the state
   std::vector<long> switches_;  ///< per body
   SceneState event_state_;      ///< what event actions see and change
+  long events_ = 0;             ///< user events located
 };
 
 }  // namespace detail
 
 template <class SceneT> class SceneIntegrator {
  public:
+  using Options = SceneIntegratorOptions;
+  using Statistics = SceneStatistics;
+
   /// Integrate `scene` from t0 starting at the scene's initial state (Scene::add's InitialState).
   /// The scene must outlive the integrator; the integrator only reads it.
   SceneIntegrator(const SceneT& scene, double t0, SceneIntegratorOptions options = {})
@@ -213,7 +254,7 @@ template <class SceneT> class SceneIntegrator {
   /// from an integrator of it or of a copy of it).
   SceneIntegrator(const SceneT& scene, double t0, const SceneState& s0,
                   SceneIntegratorOptions options = {})
-      : cvode_(make(scene, t0, s0, options)) {
+      : options_(std::move(options)), cvode_(make(scene, t0, s0, options_)) {
     sync();
   }
 
@@ -221,11 +262,10 @@ template <class SceneT> class SceneIntegrator {
   SceneIntegrator(SceneT&&, double, SceneIntegratorOptions = {}) = delete;
   SceneIntegrator(SceneT&&, double, const SceneState&, SceneIntegratorOptions = {}) = delete;
 
-  /// Integrates to t_out and returns the state there (valid until the next call; copy it to
-  /// keep it: `SceneState saved = integrator.advance(t);`).
-  const SceneState& advance(double t_out) {
+  /// Integrates to t_out (>= time()). The state there is state(); save() keeps a copy.
+  void advance(double t_out) {
     cvode_.advance(t_out);
-    return sync();
+    sync();
   }
   /// One internal step; returns the time reached.
   double step() {
@@ -242,8 +282,16 @@ template <class SceneT> class SceneIntegrator {
     cvode_.integrate(times, [&](double t, ConstVectorMap) { observer(t, std::as_const(sync())); });
   }
 
-  /// The current state: the continuous vector and the chart bases.
+  /// The current state, the continuous vector and the chart bases: a view that every call that
+  /// integrates changes. To keep a state, save() it.
   [[nodiscard]] const SceneState& state() const { return state_; }
+  /// A copy of the current state, to keep (reset() restarts from it). save(into) copies into a
+  /// state of this scene without allocating.
+  [[nodiscard]] SceneState save() const { return state_; }
+  void save(SceneState& into) const {
+    into.y = state_.y;
+    into.base = state_.base;
+  }
   [[nodiscard]] double time() const { return cvode_.time(); }
 
   /// Restarts from the state s at time t: a saved state of this scene (it restarts at the
@@ -268,7 +316,9 @@ template <class SceneT> class SceneIntegrator {
   [[nodiscard]] SceneStatistics statistics() const {
     SceneStatistics s;
     static_cast<CvodeStatistics&>(s) = cvode_.statistics();
+    s.rejected_steps = s.error_test_failures + s.nonlinear_convergence_failures;
     s.chart_switches = cvode_.system().switches();
+    s.events = cvode_.system().events();
     return s;
   }
   /// Chart switches of one body since construction.
@@ -277,6 +327,7 @@ template <class SceneT> class SceneIntegrator {
   }
 
   [[nodiscard]] const SceneT& scene() const { return cvode_.system().scene(); }
+  [[nodiscard]] const SceneIntegratorOptions& options() const { return options_; }
   [[nodiscard]] Cvode<detail::SceneSystem<SceneT>>& cvode() { return cvode_; }
 
  private:
@@ -287,21 +338,22 @@ template <class SceneT> class SceneIntegrator {
   }
 
   static Cvode<SceneSystem> make(const SceneT& scene, double t0, const SceneState& s0,
-                                 SceneIntegratorOptions options) {
+                                 const SceneIntegratorOptions& options) {
     check_state(scene, s0, "SceneIntegrator");
-    const bool bdf = options.cvode.method == CvodeMethod::bdf;
+    CvodeOptions cvode = options.cvode_options();
+    const bool bdf = cvode.method == CvodeMethod::bdf;
     const bool project = bdf && options.project_quaternions && SceneT::has_constraints;
-    options.cvode.projection = project;
-    if (options.cvode.linear_solver == CvodeLinearSolver::band &&
-        options.cvode.upper_bandwidth < 0 && options.cvode.lower_bandwidth < 0) {
-      options.cvode.upper_bandwidth = options.cvode.lower_bandwidth = scene.half_bandwidth();
+    cvode.projection = project;
+    if (cvode.linear_solver == CvodeLinearSolver::band && cvode.upper_bandwidth < 0 &&
+        cvode.lower_bandwidth < 0) {
+      cvode.upper_bandwidth = cvode.lower_bandwidth = scene.half_bandwidth();
     }
-    const bool preconditioned = bdf && options.cvode.linear_solver == CvodeLinearSolver::gmres &&
-                                options.cvode.preconditioning != CvodePreconditioning::none;
+    const bool preconditioned = bdf && cvode.linear_solver == CvodeLinearSolver::gmres &&
+                                cvode.preconditioning != CvodePreconditioning::none;
     SceneSystem system(scene, s0.base, !project && options.stabilize_quaternions, preconditioned);
     Eigen::VectorXd y = s0.y;
     system.recenter(y);
-    return Cvode<SceneSystem>(std::move(system), t0, y, std::move(options.cvode));
+    return Cvode<SceneSystem>(std::move(system), t0, y, std::move(cvode));
   }
 
   /// Copies the current state (CVODE's vector and the bases) into state_; no allocation.
@@ -312,6 +364,7 @@ template <class SceneT> class SceneIntegrator {
     return state_;
   }
 
+  SceneIntegratorOptions options_;
   Cvode<SceneSystem> cvode_;
   SceneState state_;
 };

@@ -17,12 +17,13 @@
 
 namespace tumble {
 
-/// What an ensemble needs of an integrator: advance(t) to an output time, returning the state
-/// there, and reset(t, s) to restart from another state. SceneIntegrator (CVODE) and
+/// What an ensemble needs of an integrator: advance(t) to an output time, state() there, and
+/// reset(t, s) to restart from another state. SceneIntegrator (CVODE) and
 /// OdeintIntegrator (Boost.Odeint) model it.
 template <class I>
 concept EnsembleIntegrator = requires(I& integrator, double t, const SceneState& s) {
-  { integrator.advance(t) } -> std::convertible_to<const SceneState&>;
+  integrator.advance(t);
+  { integrator.state() } -> std::convertible_to<const SceneState&>;
   integrator.reset(t, s);
 };
 
@@ -56,7 +57,8 @@ R observe_run(const SceneT& scene, Integrator& integrator, std::size_t run, cons
   R result{};
   for (const auto& value : times) {
     const double t = static_cast<double>(value);
-    const SceneState& s = integrator.advance(t);
+    integrator.advance(t);
+    const SceneState& s = integrator.state();
     if constexpr (std::is_invocable_v<Observer&, R&, std::size_t, double, const SceneState&,
                                       const SceneT&>) {
       observe(result, run, t, s, scene);

@@ -3,14 +3,14 @@
 // the state vector, the matrix, the linear and nonlinear solvers and the CVODE memory (RAII
 // handles from detail/sundials.hpp, destroyed in the reverse order of creation); it sets CVODE up
 // from CvodeOptions and the system's optional members, calls CVode() and turns its failure flags
-// into IntegrationError (causes in words: detail/cvode_flags.hpp), restarts CVODE when an event or
+// into CvodeError (causes in words: detail/cvode_flags.hpp), restarts CVODE when an event or
 // the step action changed the state, and sums the counters across restarts.
 //
 // The callbacks CVODE calls are static members with C linkage semantics: they view CVODE's vectors
 // through Eigen maps (nothing allocated), and never let an exception cross into C. A
 // RecoverableError, or a non-finite derivative or Jacobian, becomes CVODE's "recoverable failure"
 // (it retries with a smaller step); any other exception is stored, CVODE is told to stop, and the
-// IntegrationError carries it as cause(). CVODE's own messages are captured (ErrorCapture) instead
+// CvodeError carries it as cause(). CVODE's own messages are captured (ErrorCapture) instead
 // of being printed. Source: the CVODE user guide (SUNDIALS 6.4 / 7.x), "Using CVODE for IVP
 // solution" and "User-supplied functions".
 
@@ -190,7 +190,7 @@ template <class System> class CvodeCore {
       if (errors_.has_message) {
         what += " [" + std::string(errors_.message.data()) + "]";
       }
-      throw IntegrationError(what, flag, name, t_);
+      throw CvodeError(what, flag, name, IntegrationFailure::solver, t_);
     }
   }
 
@@ -227,7 +227,7 @@ template <class System> class CvodeCore {
     if (options_.max_order > 0) {
       check(CVodeSetMaxOrd(mem, options_.max_order), "CVodeSetMaxOrd");
     }
-    const long limit = step_limit_per_call(options_);
+    const long limit = options_.max_steps;
     check(CVodeSetMaxNumSteps(mem, limit > 0 ? limit : kStepChunk), "CVodeSetMaxNumSteps");
     if (options_.initial_step > 0.0) {
       check(CVodeSetInitStep(mem, options_.initial_step), "CVodeSetInitStep");
@@ -343,13 +343,13 @@ template <class System> class CvodeCore {
     }
   }
 
-  /// One call of CVode(); throws IntegrationError on a failure flag.
+  /// One call of CVode(); throws CvodeError on a failure flag.
   ///
   /// Without a per-call step limit, CVODE still runs with one, kStepChunk, and is called again
   /// when it returns CV_TOO_MUCH_WORK (its state is intact then; the next call continues the
   /// same step sequence). Disabling CVODE's limit (CVodeSetMaxNumSteps < 0) would let it loop
   /// for ever when its step falls to the rounding level of t (t + h == t: CVODE only warns); the
-  /// chunks let tumble see that and stop with an IntegrationError instead. Each chunk ends with
+  /// chunks let tumble see that and stop with an CvodeError instead. Each chunk ends with
   /// a CVODE error message, captured; SUNDIALS 7 formats it on the heap, so a call of more than
   /// kStepChunk steps is the one place where advance() may allocate there.
   int call_cvode(double tout, int task) {
@@ -363,7 +363,7 @@ template <class System> class CvodeCore {
       if (std::isfinite(reached)) {
         t_ = reached;  // on failure CVODE returns the last time reached and the state there
       }
-      if (flag == CV_TOO_MUCH_WORK && step_limit_per_call(options_) == 0) {
+      if (flag == CV_TOO_MUCH_WORK && options_.max_steps == 0) {
         // kStepChunk steps moved t by at most a few units in its last place each: CVODE's step
         // is at the rounding level of t and the integration cannot reach tout.
         const double rounding =
@@ -411,12 +411,10 @@ template <class System> class CvodeCore {
     ++reinits_;
   }
 
-  IntegrationError failure(int flag) const {
-    return cvode_failure(flag, t_, options_, report_, errors_);
-  }
+  CvodeError failure(int flag) const { return cvode_failure(flag, t_, options_, report_, errors_); }
 
   /// The integration made no progress in time over kStepChunk steps (see call_cvode()).
-  IntegrationError stalled(double before) const {
+  CvodeError stalled(double before) const {
     sun_real h = 0.0;
     (void)CVodeGetCurrentStep(mem_.get(), &h);
     return stalled_failure(before, t_, h, kStepChunk, report_);
@@ -434,7 +432,7 @@ template <class System> class CvodeCore {
   // ---- callbacks (C calling convention; nothing may throw out of them) ----------------------
   /// Runs f, turning exceptions into CVODE return values: RecoverableError -> 1 (retry with a
   /// smaller step) where CVODE supports recovery, anything else -> -1 (stop), stored for the
-  /// IntegrationError.
+  /// CvodeError.
   template <class F> int guarded(const char* where, double t, bool recoverable, F&& f) noexcept {
     try {
       return f();

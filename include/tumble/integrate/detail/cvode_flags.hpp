@@ -1,10 +1,13 @@
 #pragma once
-// The causes of CVODE's failure flags in words, for tumble::IntegrationError's message.
+// The causes of CVODE's failure flags in words, for tumble::CvodeError's message, and
+// the shared IntegrationFailure code of each.
 // Source: the CVODE user guide, "CVODE solver function" (return values of CVode) and the
 // descriptions of the user-supplied functions (right-hand side, root, projection, Jacobian,
 // preconditioner), SUNDIALS 6.4 / 7.x.
 
 #include <cvode/cvode.h>
+
+#include "tumble/integrate/errors.hpp"
 
 namespace tumble::detail {
 
@@ -13,7 +16,7 @@ namespace tumble::detail {
   switch (flag) {
     case CV_TOO_MUCH_WORK:
       return "the solver took the per-call step limit of internal steps without reaching the "
-             "requested time; raise CvodeOptions::max_steps_per_call (0: no limit), or, if the "
+             "requested time; raise max_steps (0: no limit), or, if the "
              "steps are tiny because the problem is stiff, use CvodeMethod::bdf";
     case CV_TOO_MUCH_ACC:
       return "the requested accuracy is beyond what double precision can deliver here; loosen "
@@ -69,6 +72,32 @@ namespace tumble::detail {
       return "the projection reported recoverable errors repeatedly";
     default:
       return "CVODE failed (see the CVODE message)";
+  }
+}
+
+/// The shared IntegrationFailure code of a negative CVode() return flag.
+[[nodiscard]] inline IntegrationFailure flag_reason(int flag) noexcept {
+  switch (flag) {
+    case CV_TOO_MUCH_WORK:
+      return IntegrationFailure::step_budget;
+    case CV_TOO_MUCH_ACC:
+    case CV_TOO_CLOSE:
+      return IntegrationFailure::step_size;
+    case CV_ERR_FAILURE:
+      return IntegrationFailure::error_test;
+    case CV_CONV_FAILURE:
+    case CV_NLS_FAIL:
+      return IntegrationFailure::convergence;
+    case CV_RHSFUNC_FAIL:
+    case CV_FIRST_RHSFUNC_ERR:
+    case CV_REPTD_RHSFUNC_ERR:
+    case CV_UNREC_RHSFUNC_ERR:
+    case CV_RTFUNC_FAIL:
+    case CV_PROJFUNC_FAIL:
+    case CV_REPTD_PROJFUNC_ERR:
+      return IntegrationFailure::callback;
+    default:
+      return IntegrationFailure::solver;
   }
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // What tumble::Cvode's core reports, kept apart from its machinery: CallbackReport (what a
-// callback failed with, recorded without allocating inside C code), the IntegrationError built
+// callback failed with, recorded without allocating inside C code), the CvodeError built
 // from a CVODE failure flag or from a stalled integration (flag, cause in words, step limit,
 // callback report, CVODE's message), and add_counters(), which reads CVODE's counters of one
 // integration segment (CVodeGet*, "Optional output functions" of the CVODE user guide) into
@@ -22,7 +22,7 @@
 
 namespace tumble::detail {
 
-/// What a callback reported: an unrecoverable exception (rethrown as the IntegrationError's
+/// What a callback reported: an unrecoverable exception (rethrown as the CvodeError's
 /// cause) and the last recoverable failure (for the message when CVODE gives up). Filling it
 /// never allocates: exception_ptr only shares the thrown object, messages go to a fixed buffer.
 struct CallbackReport {
@@ -77,27 +77,27 @@ inline std::string callback_note(const CallbackReport& r) {
   return "";
 }
 
-/// The IntegrationError for a failure flag of CVode() at time t: the flag, its cause in words,
+/// The CvodeError for a failure flag of CVode() at time t: the flag, its cause in words,
 /// the step limit for CV_TOO_MUCH_WORK, what a callback reported, CVODE's own message.
-inline IntegrationError cvode_failure(int flag, double t, const CvodeOptions& o,
-                                      const CallbackReport& r, const ErrorCapture& e) {
+inline CvodeError cvode_failure(int flag, double t, const CvodeOptions& o, const CallbackReport& r,
+                                const ErrorCapture& e) {
   const std::string name = flag_name(flag);
   std::string what = "tumble::Cvode: CVODE failed with " + name + " at t = " + format_number(t) +
                      ": " + flag_cause(flag);
   if (flag == CV_TOO_MUCH_WORK) {
-    what += " (max_steps_per_call = " + std::to_string(step_limit_per_call(o)) + ")";
+    what += " (max_steps = " + std::to_string(o.max_steps) + ")";
   }
   what += callback_note(r);
   if (e.has_message) {
     what += " [" + std::string(e.message.data()) + "]";
   }
-  return IntegrationError(what, flag, name, t, r.exception);
+  return CvodeError(what, flag, name, flag_reason(flag), t, r.exception);
 }
 
-/// The IntegrationError (CV_TOO_MUCH_WORK) for an integration without a per-call step limit
+/// The CvodeError (CV_TOO_MUCH_WORK) for an integration without a per-call step limit
 /// whose last `steps` steps, of size about h, moved t only from `before` to t.
-inline IntegrationError stalled_failure(double before, double t, double h, long steps,
-                                        const CallbackReport& r) {
+inline CvodeError stalled_failure(double before, double t, double h, long steps,
+                                  const CallbackReport& r) {
   std::string what =
       "tumble::Cvode: the integration stalled at t = " + format_number(t) + ": " +
       std::to_string(steps) + " internal steps moved t from " + format_number(before) + " by " +
@@ -106,7 +106,8 @@ inline IntegrationError stalled_failure(double before, double t, double h, long 
       "changes too fast for the precision of t (shift the time origin), or the system has a "
       "singularity here";
   what += callback_note(r);
-  return IntegrationError(what, CV_TOO_MUCH_WORK, flag_name(CV_TOO_MUCH_WORK), t, r.exception);
+  return CvodeError(what, CV_TOO_MUCH_WORK, flag_name(CV_TOO_MUCH_WORK),
+                    IntegrationFailure::step_size, t, r.exception);
 }
 
 /// Adds CVODE's counters of the current segment (since the last (re)initialization) to s. The

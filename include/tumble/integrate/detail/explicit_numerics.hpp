@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include <Eigen/Core>
 
@@ -14,11 +15,18 @@ namespace tumble::detail {
 /// The initial step for a method of order p at (t, y) with y' = f0 (Hairer, Norsett and Wanner,
 /// Solving ODEs I, Sec. II.4: one Euler step of size h0, then the second derivative from it).
 /// f(y1, f1) evaluates the right-hand side at y1 into f1 and may throw; y1 and f1 are scratch.
-/// Returns h0 when the trial point cannot be evaluated.
-template <class F, class V, class W>
-double initial_step(F&& f, const V& y, const V& f0, W& y1, W& f1, double atol, double rtol,
+/// atol: one value, or a vector of one per entry. Returns h0 when the trial point cannot be
+/// evaluated.
+template <class F, class V, class W, class A>
+double initial_step(F&& f, const V& y, const V& f0, W& y1, W& f1, const A& atol, double rtol,
                     double order, double max_step) {
-  const auto scale = (atol + rtol * y.array().abs()).eval();
+  const auto scale = [&] {
+    if constexpr (std::is_arithmetic_v<A>) {
+      return (atol + rtol * y.array().abs()).eval();
+    } else {
+      return (atol.array() + rtol * y.array().abs()).eval();
+    }
+  }();
   const double d0 = std::sqrt((y.array() / scale).square().mean());
   const double d1 = std::sqrt((f0.array() / scale).square().mean());
   double h0 = (d0 < 1e-5 || d1 < 1e-5) ? 1e-6 : 0.01 * d0 / d1;

@@ -12,6 +12,9 @@
 // times, charts, projection, events, budgets) is the integrator's.
 
 #include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
 #include <type_traits>
 #include <vector>
 
@@ -44,9 +47,61 @@ template <int N>
 using OdeintState = std::conditional_t<N == Eigen::Dynamic, std::vector<double>,
                                        std::array<double, static_cast<std::size_t>(N < 0 ? 1 : N)>>;
 
-/// One embedded pair under Odeint's controller (controlled_runge_kutta, default error checker).
+/// Odeint's error test with an absolute tolerance per entry (or one for all): the largest of
+/// |err_i| / (atol_i + rtol (|x_i| + |h| |x'_i|)) over i, Odeint's default_error_checker with
+/// a_x = a_dxdt = 1 but for atol_i; in one pass, with a NaN error counted as infinite (a
+/// rejected step), where the default's maximum would pass it over.
+template <class Value, class Algebra, class Operations> class ToleranceChecker {
+ public:
+  using value_type = Value;
+  using algebra_type = Algebra;
+  using operations_type = Operations;
+
+  /// atol_entries: nullptr for the one value atol, else atol_i for each entry (not owned).
+  explicit ToleranceChecker(Value atol = 1e-8, Value rtol = 1e-8,
+                            const Value* atol_entries = nullptr)
+      : atol_(atol), rtol_(rtol), entries_(atol_entries) {}
+
+  template <class State, class Deriv, class Err, class Time>
+  Value error(Algebra& /*algebra*/, const State& x_old, const Deriv& dxdt_old, Err& x_err,
+              Time dt) const {
+    using std::abs;
+    const Value adt = abs(static_cast<Value>(dt));
+    const std::size_t n = x_err.size();
+    Value worst = 0;
+    if (entries_ == nullptr) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const Value e = abs(x_err[i]) / (atol_ + rtol_ * (abs(x_old[i]) + adt * abs(dxdt_old[i])));
+        worst = e > worst ? e : worst;
+        if (e != e) {
+          return std::numeric_limits<Value>::infinity();
+        }
+      }
+    } else {
+      for (std::size_t i = 0; i < n; ++i) {
+        const Value e =
+            abs(x_err[i]) / (entries_[i] + rtol_ * (abs(x_old[i]) + adt * abs(dxdt_old[i])));
+        worst = e > worst ? e : worst;
+        if (e != e) {
+          return std::numeric_limits<Value>::infinity();
+        }
+      }
+    }
+    return worst;
+  }
+
+ private:
+  Value atol_, rtol_;
+  const Value* entries_;
+};
+
+/// One embedded pair under Odeint's controller (controlled_runge_kutta) with the per-entry
+/// error test above.
 template <class ErrorStepper> class OdeintControlled {
-  using Controlled = odeint::controlled_runge_kutta<ErrorStepper>;
+  using Checker =
+      ToleranceChecker<typename ErrorStepper::value_type, typename ErrorStepper::algebra_type,
+                       typename ErrorStepper::operations_type>;
+  using Controlled = odeint::controlled_runge_kutta<ErrorStepper, Checker>;
 
  public:
   /// dopri5: first same as last, and Odeint's dense output.
@@ -54,8 +109,9 @@ template <class ErrorStepper> class OdeintControlled {
                                               odeint::explicit_error_stepper_fsal_tag>;
   static constexpr bool dense = fsal;
 
-  OdeintControlled(double atol, double rtol)
-      : controlled_(typename Controlled::error_checker_type(atol, rtol)) {}
+  /// atol_entries: nullptr for the one value atol, else atol_i per entry (must outlive this).
+  OdeintControlled(double atol, double rtol, const double* atol_entries = nullptr)
+      : controlled_(Checker(atol, rtol, atol_entries)) {}
 
   template <class Sys, class State>
   bool try_step(Sys sys, const State& x, const State& dxdt, double& t, State& x_new,
