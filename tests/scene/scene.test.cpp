@@ -680,3 +680,49 @@ TEST_CASE("the right-hand side and the root functions allocate nothing", "[scene
   CHECK(g.size() == 3);  // ZYX and rotation vector charts, and the event
   CHECK(g[2] == y[2]);
 }
+
+// A body held at a fixed point gets its position once, from the body: the initial state may leave
+// it at zero or repeat it to 1e-12 relative; anything else is refused, naming both.
+TEST_CASE("scene: a fixed point is given once, to the body", "[scene]") {
+  using Held = RigidBody<EulerParameters, ReferencePoint::fixed_point>;
+  const auto mp =
+      MassProperties<>::about_centroid(1.0, Vector3d(1, 2, 3).asDiagonal(), Vector3d(0, 0, 0.2));
+  const Vector3d pivot(3.0, -1.0, 2.0);
+  tumble::Scene<Bodies<Held>> scene;
+  const auto a = scene.add(Held(mp, pivot), {.omega = {0, 0, 1}});  // position left at zero
+  CHECK(tumble::position(scene, a, scene.initial_state()) == pivot);
+  // Repeated, with the rounding of a computed point (1e-15 relative): accepted.
+  (void)scene.add(Held(mp, pivot), {.position = pivot * (1 + 1e-15)});
+  // Off by 1e-9 m, or moving: refused with the point, the distance and the rule.
+  const auto refused = [&](const InitialState& s) {
+    try {
+      (void)scene.add(Held(mp, pivot), s);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string off = refused({.position = pivot + Vector3d(0, 0, 1e-9)});
+  CHECK(off.find("is held at its fixed point (3 -1 2)") != std::string::npos);
+  CHECK(off.find("leave InitialState::position at zero, or repeat that point") !=
+        std::string::npos);
+  CHECK(off.find("1.0000000") != std::string::npos);  // the distance, 1.0000000xxe-09 m
+  CHECK(refused({.velocity = {0, 1e-6, 0}}).find("leave the velocity zero") != std::string::npos);
+  CHECK(scene.body_count() == 2);
+}
+
+// The state's size from the types, for a fixed-size integrator: [r; p; v; omega] (13) and
+// [r; theta; v; omega] (12) per free body, [p; omega] (7) for one held at a point; [q; qdot] in
+// the chapter's form (14 for Euler parameters).
+static_assert(tumble::state_size<tumble::Scene<Bodies<RigidBody<EulerParameters>>>,
+                                 RigidBody<EulerParameters>> == 13);
+static_assert(
+    tumble::state_size<tumble::Scene<Bodies<RigidBody<EulerParameters>, RigidBody<EulerZYX>>>,
+                       RigidBody<EulerParameters>, RigidBody<EulerZYX>, RigidBody<EulerZYX>> ==
+    13 + 2 * 12);
+static_assert(tumble::state_size<
+                  tumble::Scene<Bodies<RigidBody<EulerParameters, ReferencePoint::fixed_point>>>,
+                  RigidBody<EulerParameters, ReferencePoint::fixed_point>> == 7);
+static_assert(tumble::state_size<tumble::Scene<Bodies<RigidBody<EulerParameters>>, tumble::Loads<>,
+                                               tumble::StateForm::generalized>,
+                                 RigidBody<EulerParameters>> == 14);

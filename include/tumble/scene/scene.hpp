@@ -157,8 +157,9 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
 
   // --- building -------------------------------------------------------------------------------
   /// Add a body with its physical initial state. Returns its handle. A body held at a fixed point
-  /// (ReferencePoint::fixed_point) has no translational state: s.position must be its fixed point
-  /// and s.velocity zero.
+  /// (ReferencePoint::fixed_point) has no translational state: its position is the fixed point
+  /// the body was made with, so leave s.position at its default (or repeat the point: it must
+  /// agree to 1e-12 relative) and s.velocity at zero.
   /// \throws std::invalid_argument for a non-finite or non-orthonormal initial state, or a fixed
   ///         body whose s.position or s.velocity contradict its fixed point.
   template <class Body> BodyId<Body> add(Body body, const InitialState& s = {}) {
@@ -384,18 +385,27 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
     }
   }
 
-  /// A body held at a fixed point starts there, at rest.
+  /// A body held at a fixed point starts there, at rest. Its position is given once, to the
+  /// body: s.position may be left at its default (zero), which means "at the fixed point", or
+  /// repeat the point to within kFixedPointTolerance (relative to its distance from the origin,
+  /// at least 1 m); s.velocity must be zero to within kFixedPointTolerance m/s.
   static void check_fixed_point(const InitialState& s, const Vector3<double>& fixed_point, int id) {
-    if (s.position != fixed_point || !s.velocity.isZero(0)) {
+    const double scale = std::max(1.0, fixed_point.norm());
+    const bool at_point =
+        s.position.isZero(0) || (s.position - fixed_point).norm() <= kFixedPointTolerance * scale;
+    const bool at_rest = s.velocity.norm() <= kFixedPointTolerance;
+    if (!at_point || !at_rest) {
       std::ostringstream os;
       os.precision(17);
       os << "tumble::Scene::add: body " << id << " is held at its fixed point ("
-         << fixed_point.transpose() << "): the initial position must be that point (got "
-         << s.position.transpose() << ") and the initial velocity zero (got "
-         << s.velocity.transpose() << ")";
+         << fixed_point.transpose() << "), which the body gives: leave InitialState::position "
+         << "at zero, or repeat that point (to " << kFixedPointTolerance << " relative; got "
+         << s.position.transpose() << ", " << (s.position - fixed_point).norm()
+         << " m from it), and leave the velocity zero (got " << s.velocity.transpose() << ")";
       throw std::invalid_argument(os.str());
     }
   }
+  static constexpr double kFixedPointTolerance = 1e-12;
 
   std::tuple<std::vector<Entry<B>>...> groups_;
   std::tuple<std::vector<Attached<L>>...> loads_;
@@ -408,5 +418,12 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
   SceneState y0_;
   int size_ = 0;
 };
+
+/// The length of the state y of a scene of type SceneT holding one body of each of the types
+/// Body... (a type listed twice: two such bodies), known at compile time: the fixed size N of an
+/// integrator's state (OdeintIntegrator<SceneT, state_size<SceneT, Body...>>), worked out from the
+/// types instead of by hand. The integrator checks it against Scene::size() when it is made.
+template <class SceneT, class... Body>
+inline constexpr int state_size = (SceneT::template Entry<Body>::block_size + ... + 0);
 
 }  // namespace tumble
