@@ -190,10 +190,10 @@ TEST_CASE("bad input: tolerances that are not positive and finite", "[integrate]
   atol(4) = 0.0;
   o.atol = atol;
   CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, o); }),
-            "'atol' component 4 must be finite and > 0"));
+            "'atol' entry 4 must be finite and > 0"));
   o.atol = VectorXd::Constant(3, 1e-8);
   CHECK(has(message_of<std::invalid_argument>([&] { SceneIntegrator i(scene, 0.0, o); }),
-            "'atol' per component must have the system size 13 (got 3)"));
+            "'atol' per entry must have the state's size 13 (got 3)"));
 }
 
 TEST_CASE("bad input: other options out of range", "[integrate][bad_input]") {

@@ -703,7 +703,7 @@ TEST_CASE("scene: a fixed point is given once, to the body", "[scene]") {
     return std::string("accepted");
   };
   const std::string off = refused({.position = pivot + Vector3d(0, 0, 1e-9)});
-  CHECK(off.find("is held at its fixed point (3 -1 2)") != std::string::npos);
+  CHECK(off.find("is held at its fixed point (3, -1, 2)") != std::string::npos);
   CHECK(off.find("leave InitialState::position at zero, or repeat that point") !=
         std::string::npos);
   CHECK(off.find("1.0000000") != std::string::npos);  // the distance, 1.0000000xxe-09 m

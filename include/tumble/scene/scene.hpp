@@ -397,11 +397,19 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
     if (!at_point || !at_rest) {
       std::ostringstream os;
       os.precision(17);
-      os << "tumble::Scene::add: body " << id << " is held at its fixed point ("
-         << fixed_point.transpose() << "), which the body gives: leave InitialState::position "
-         << "at zero, or repeat that point (to " << kFixedPointTolerance << " relative; got "
-         << s.position.transpose() << ", " << (s.position - fixed_point).norm()
-         << " m from it), and leave the velocity zero (got " << s.velocity.transpose() << ")";
+      const auto vec = [&os](const Vector3<double>& v) {
+        os << "(" << v(0) << ", " << v(1) << ", " << v(2) << ")";
+      };
+      os << "tumble::Scene::add: body " << id << " is held at its fixed point ";
+      vec(fixed_point);
+      os << ", which the body gives: leave InitialState::position at zero, or repeat that point "
+            "(to "
+         << kFixedPointTolerance << " relative; got ";
+      vec(s.position);
+      os << ", " << (s.position - fixed_point).norm()
+         << " m from it), and leave the velocity zero (got ";
+      vec(s.velocity);
+      os << ")";
       throw std::invalid_argument(os.str());
     }
   }
