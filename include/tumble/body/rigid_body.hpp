@@ -113,7 +113,7 @@ class RigidBody {
   }
   /// The same, held at the inertial origin.
   explicit RigidBody(MassProperties<S> mass_properties) requires fixed
-      : RigidBody(std::move(mass_properties), Vector3<S>::Zero()) {}
+      : mp_(std::move(mass_properties)) {}  // not delegating: see pivot_
 
   /// The same body in another scalar type (for example Jet<N>, to differentiate).
   template <class T>
@@ -160,7 +160,7 @@ class RigidBody {
   /// for a body held at a fixed point, whose r_oc is its own).
   [[nodiscard]] static Vector3<S> point_position(const Coords& q,
                                                  const Vector3<S>& r) requires(!fixed) {
-    return position(q) + rotation(q) * r;
+    return q.template head<3>() + rotation(q) * r;  // not position(q): see pivot_
   }
   [[nodiscard]] Vector3<S> point_position(const Coords& q,
                                           const Vector3<S>& r) const requires fixed {
@@ -514,9 +514,16 @@ class RigidBody {
     throw NonFiniteError(os.str());
   }
 
-  struct NoPivot {};
   MassProperties<S> mp_;
-  [[no_unique_address]] std::conditional_t<fixed, Vector3<S>, NoPivot> pivot_{};
+  // Where c is held (fixed_point; zero, and never read, for the other bodies). Every body has it,
+  // not only fixed ones (an empty member elsewhere saved 3 scalars of 46), because the members
+  // marked `requires fixed` read it, and their definitions must compile for every Ref: an explicit
+  // instantiation (`template class RigidBody<P, Ref, S>;`) instantiates only the members whose
+  // constraints hold ([temp.explicit]/10), but Clang 14 instantiates all of them
+  // (llvm-project#44549, fixed in Clang 15). For the same reason the members of either kind call
+  // no member constrained to the other kind (a fixed body's RigidBody(mass_properties) does not
+  // delegate to its two-argument constructor; the static point_position does not call position).
+  Vector3<S> pivot_ = Vector3<S>::Zero();
 };
 
 }  // namespace tumble
