@@ -359,7 +359,9 @@ class RigidBody {
   /// with alpha from the theta-rows (velocity_rates): what the applied force F leaves of m a_g.
   [[nodiscard]] Vector3<S> reaction_force(const Matrix3<S>& rotation, const Vector3<S>& om,
                                           const Wrench<S>& w) const requires fixed {
-    const Vector3<S> alpha = velocity_rates_impl(Theta(), om, w, nullptr).alpha;
+    // theta is not read at a fixed point (moments about c need no R): a zero stands in for it, not
+    // an uninitialized Theta(), which GCC 12 -O3 reports (-Wmaybe-uninitialized).
+    const Vector3<S> alpha = velocity_rates_impl(Theta::Zero(), om, w, nullptr).alpha;
     const Vector3<S>& s = mp_.first_moment();
     const Vector3<S> ab = alpha.cross(s) + om.cross(om.cross(s));
     return rotation * ab - w.force;
