@@ -113,7 +113,7 @@ class RigidBody {
   }
   /// The same, held at the inertial origin.
   explicit RigidBody(MassProperties<S> mass_properties) requires fixed
-      : RigidBody(std::move(mass_properties), Vector3<S>::Zero()) {}
+      : mp_(std::move(mass_properties)) {}  // not delegating: see pivot_
 
   /// The same body in another scalar type (for example Jet<N>, to differentiate).
   template <class T>
@@ -160,7 +160,7 @@ class RigidBody {
   /// for a body held at a fixed point, whose r_oc is its own).
   [[nodiscard]] static Vector3<S> point_position(const Coords& q,
                                                  const Vector3<S>& r) requires(!fixed) {
-    return position(q) + rotation(q) * r;
+    return q.template head<3>() + rotation(q) * r;  // not position(q): see pivot_
   }
   [[nodiscard]] Vector3<S> point_position(const Coords& q,
                                           const Vector3<S>& r) const requires fixed {
@@ -359,7 +359,9 @@ class RigidBody {
   /// with alpha from the theta-rows (velocity_rates): what the applied force F leaves of m a_g.
   [[nodiscard]] Vector3<S> reaction_force(const Matrix3<S>& rotation, const Vector3<S>& om,
                                           const Wrench<S>& w) const requires fixed {
-    const Vector3<S> alpha = velocity_rates_impl(Theta(), om, w, nullptr).alpha;
+    // theta is not read at a fixed point (moments about c need no R): a zero stands in for it, not
+    // an uninitialized Theta(), which GCC 12 -O3 reports (-Wmaybe-uninitialized).
+    const Vector3<S> alpha = velocity_rates_impl(Theta::Zero(), om, w, nullptr).alpha;
     const Vector3<S>& s = mp_.first_moment();
     const Vector3<S> ab = alpha.cross(s) + om.cross(om.cross(s));
     return rotation * ab - w.force;
@@ -514,9 +516,16 @@ class RigidBody {
     throw NonFiniteError(os.str());
   }
 
-  struct NoPivot {};
   MassProperties<S> mp_;
-  [[no_unique_address]] std::conditional_t<fixed, Vector3<S>, NoPivot> pivot_{};
+  // Where c is held (fixed_point; zero, and never read, for the other bodies). Every body has it,
+  // not only fixed ones (an empty member elsewhere saved 3 scalars of 46), because the members
+  // marked `requires fixed` read it, and their definitions must compile for every Ref: an explicit
+  // instantiation (`template class RigidBody<P, Ref, S>;`) instantiates only the members whose
+  // constraints hold ([temp.explicit]/10), but Clang 14 instantiates all of them
+  // (llvm-project#44549, fixed in Clang 15). For the same reason the members of either kind call
+  // no member constrained to the other kind (a fixed body's RigidBody(mass_properties) does not
+  // delegate to its two-argument constructor; the static point_position does not call position).
+  Vector3<S> pivot_ = Vector3<S>::Zero();
 };
 
 }  // namespace tumble
