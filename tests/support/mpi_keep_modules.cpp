@@ -5,4 +5,4 @@
 // loaded, those stacks name their libraries and ensemble/openmpi.lsan.supp suppresses them.
 // Defined in the executable, it is the dlclose every library of the process calls.
 
-extern "C" int dlclose(void*) { return 0; }  // NOLINT(readability-inconsistent-declaration-parameter-name)
+extern "C" int dlclose(void*) { return 0; }
