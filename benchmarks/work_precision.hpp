@@ -375,6 +375,9 @@ int scaling_measurements(const ScalingPlan& plan);
 struct EnsemblePlan {
   std::size_t runs = 2000;  ///< runs per timed ensemble: threads, serial loops, MPI ranks
   int reps = 3;             ///< timed repetitions of each, the median is reported
+  /// Calls in a row of each Ensemble::integrate row, each timed and shown: a slow call cannot
+  /// hide behind the median (issue 20: some calls of ten were 3-4x slower).
+  int calls = 10;
   /// The large ensemble timed once on 2 threads (Ensemble::fold); its tenth is the smaller fold
   /// of the memory measurement.
   std::size_t large = 100000;
@@ -396,6 +399,7 @@ struct EnsembleRow {
   int reps = 0;
   double seconds = std::numeric_limits<double>::quiet_NaN();  ///< median, wall clock
   double best = std::numeric_limits<double>::quiet_NaN();     ///< fastest repetition
+  std::vector<double> calls;  ///< each repetition's wall time, s, in the order they ran
   /// The cores the measurement had: the process's CPU time (all its threads; MPI: all ranks)
   /// over the wall time, summed over the repetitions. Below the threads or ranks asked for, the
   /// machine was busy with something else.
@@ -434,8 +438,13 @@ struct EnsembleResult {
   long steps_short = 0;
   long steps_long = 0;
   long allocations_new = -1;  ///< the same, to make one integrator
-  bool mpi_same = false;      ///< MPI results bitwise those of the threads (their sum)
-  std::string mpi_note;       ///< why there are no MPI rows, or ""
+  /// The process's first 2-thread call (oneTBB starts its worker threads in it) of a few runs,
+  /// and the same call again, s: the start-up the timed rows are kept clear of.
+  std::size_t startup_runs = 0;
+  double startup_first = std::numeric_limits<double>::quiet_NaN();
+  double startup_again = std::numeric_limits<double>::quiet_NaN();
+  bool mpi_same = false;  ///< MPI results bitwise those of the threads (their sum)
+  std::string mpi_note;   ///< why there are no MPI rows, or ""
 };
 
 /// Calls of the global operator new (every form) while counting is on, in any thread: the

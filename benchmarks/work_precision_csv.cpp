@@ -72,6 +72,22 @@ void write_ensemble_csv(const std::filesystem::path& path, const EnsembleResult&
   const auto value = [&](const std::string& name, const std::string& v) {
     f << name << ",,,,,,,,,,,,,1," << csv_quote(v) << '\n';
   };
+  for (const EnsembleRow& x : r.rows) {  // each call of a row, in order (s)
+    if (x.what.rfind("threads", 0) == 0) {
+      std::string list;
+      for (const double c : x.calls) {
+        if (!list.empty()) {
+          list += ' ';
+        }
+        list += num(c);
+      }
+      std::string name = "call_seconds_";
+      name += x.what;
+      name += '_';
+      name += std::to_string(x.threads);
+      value(name, list);
+    }
+  }
   value("tolerance", num(r.tol));
   value("nominal_attitude_error_rad", num(r.nominal_error));
   value("sample_max_attitude_error_rad", num(r.sample_error));

@@ -5,7 +5,10 @@
 // torque-free solution (tests/support/torque_free.hpp). Measured, on the wall clock (a thread's
 // CPU clock cannot time several threads), each the median of plan.reps repetitions:
 //  - runs per second of Ensemble::integrate with 1 and 2 threads (EnsembleOptions::threads, the
-//    default grain of 1 run per task);
+//    default grain of 1 run per task), plan.calls calls in a row each, every call's time kept
+//    (a slow call must show, not hide behind a median): on one Ensemble (its integrators kept
+//    from call to call) and, on 2 threads, on a new Ensemble per call (new integrators each
+//    call, the memory of the last call's freed by the calling thread);
 //  - the per-run cost of the 1-thread ensemble against two serial loops of the same runs with the
 //    same observer: one integrator made once and reset for each run (what the ensemble does in
 //    each thread), and a new integrator per run;
@@ -150,6 +153,7 @@ template <class Body> void time_reps(EnsembleRow& row, int reps, Body&& body) {
     row.ok = false;
     return;
   }
+  row.calls = s;
   summarize_times(row, std::move(s), cpu);
 }
 
@@ -214,16 +218,24 @@ struct Study {
     return result.rows.back();
   }
 
-  /// Ensemble::integrate of plan.runs runs on `threads` threads.
-  void threads(int n) {
-    EnsembleRow row = make_row(
-        "threads", "Ensemble::integrate, " + std::to_string(n) + (n == 1 ? " thread" : " threads"),
-        n, 1, plan.runs);
+  /// plan.calls calls in a row of Ensemble::integrate of plan.runs runs on `threads` threads:
+  /// of one Ensemble, or (fresh) of a new Ensemble each call.
+  void threads(int n, bool fresh) {
+    EnsembleRow row =
+        make_row(fresh ? "threads-new" : "threads",
+                 "Ensemble::integrate, " + std::to_string(n) + (n == 1 ? " thread" : " threads") +
+                     (fresh ? ", new ensembles" : ""),
+                 n, 1, plan.runs);
     const Ensemble e(t.scene, make, {.threads = n});
     const auto start = [this](std::size_t i) { return initial(i); };
     double sum = 0;
-    time_reps(row, plan.reps, [&] {
-      sum = checked_sum(e.integrate<double>(plan.runs, start, 0.0, times, keep()));
+    time_reps(row, plan.calls, [&] {
+      if (fresh) {
+        const Ensemble f(t.scene, make, {.threads = n});
+        sum = checked_sum(f.integrate<double>(plan.runs, start, 0.0, times, keep()));
+      } else {
+        sum = checked_sum(e.integrate<double>(plan.runs, start, 0.0, times, keep()));
+      }
     });
     if (n == 1) {
       reference_sum = sum;
@@ -231,6 +243,19 @@ struct Study {
       row.note = "results differ from 1 thread's";
     }
     add(std::move(row));
+  }
+
+  /// The process's first parallel call, before any timed row: oneTBB starts its worker threads
+  /// in it; timed apart, so that no row's first call carries it (docs/benchmarks.md, issue 20).
+  void start_threads() {
+    const Ensemble e(t.scene, make, {.threads = 2});
+    const auto start = [this](std::size_t i) { return initial(i); };
+    result.startup_runs = 64;
+    for (double* s : {&result.startup_first, &result.startup_again}) {
+      const Stopwatch watch;
+      checked_sum(e.integrate<double>(result.startup_runs, start, 0.0, times, keep()));
+      *s = watch.wall();
+    }
   }
 
   /// A serial loop of the same runs: one integrator reset per run, or a new one per run.
@@ -248,16 +273,16 @@ struct Study {
         for (std::size_t i = 0; i < plan.runs; ++i) {
           double angle = 0;
           integrator.reset(0.0, initial(i));
-          integrator.advance(kEnd);
-          observe(angle, i, kEnd, integrator.state());
+          integrator.integrate(times,
+                               [&](double tk, const SceneState& s) { observe(angle, i, tk, s); });
           sum += angle;
         }
       } else {
         for (std::size_t i = 0; i < plan.runs; ++i) {
           double angle = 0;
           Integrator integrator = make(t.scene, 0.0, initial(i));
-          integrator.advance(kEnd);
-          observe(angle, i, kEnd, integrator.state());
+          integrator.integrate(times,
+                               [&](double tk, const SceneState& s) { observe(angle, i, tk, s); });
           sum += angle;
         }
       }
@@ -380,7 +405,7 @@ struct Study {
 }  // namespace
 
 int ensemble_measurements(const EnsemblePlan& plan) {
-  return 8 + (plan.mpi && ensemble_mpi_built() ? 2 : 0);
+  return 9 + (plan.mpi && ensemble_mpi_built() ? 2 : 0);
 }
 
 EnsembleResult run_ensemble(const EnsemblePlan& plan, const std::filesystem::path& out,
@@ -388,10 +413,12 @@ EnsembleResult run_ensemble(const EnsemblePlan& plan, const std::filesystem::pat
   EnsembleResult result;
   result.result_bytes = sizeof(RunOutcome<double>);
   Study study(plan, result, step);
-  study.threads(1);
+  study.start_threads();
+  study.threads(1, false);
   study.serial(true);
   study.serial(false);
-  study.threads(2);
+  study.threads(2, false);
+  study.threads(2, true);
   if (plan.mpi && ensemble_mpi_built()) {
     study.mpi(1, out);
     study.mpi(2, out);

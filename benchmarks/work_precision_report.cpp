@@ -448,6 +448,7 @@ std::string ensemble_table(const EnsembleResult& r, const EnsemblePlan& plan) {
   }
   const EnsembleRow* t1 = find_row(r, "threads", 1, 1);
   const EnsembleRow* t2 = find_row(r, "threads", 2, 1);
+  const EnsembleRow* t2new = find_row(r, "threads-new", 2, 1);
   const EnsembleRow* reset = find_row(r, "serial-reset", 1, 1);
   const EnsembleRow* fresh = find_row(r, "serial-new", 1, 1);
   const EnsembleRow* m1 = find_row(r, "mpi", 1, 1);
@@ -465,9 +466,35 @@ std::string ensemble_table(const EnsembleResult& r, const EnsemblePlan& plan) {
     return a && b ? a->seconds / b->seconds : std::numeric_limits<double>::quiet_NaN();
   };
   const double threads_up = ratio(t1, t2), ranks_up = ratio(m1, m2);
+  // Every call of the 2-thread rows against the 1-thread median: the worst call decides.
+  double worst_up = std::numeric_limits<double>::quiet_NaN();
+  s << "  each call in a row, ms (the speed-up of each 2-thread call against the 1-thread "
+       "median):\n";
+  for (const EnsembleRow* x : {t1, t2, t2new}) {
+    if (x == nullptr || x->calls.empty()) {
+      continue;
+    }
+    s << "    " << pad(x->label, 44);
+    for (const double c : x->calls) {
+      s << fmt(" %.0f", 1e3 * c);
+    }
+    s << "\n";
+    if (x != t1 && t1 != nullptr) {
+      s << "    " << pad("", 44);
+      for (const double c : x->calls) {
+        const double up = t1->seconds / c;
+        s << fmt(" %.2fx", up);
+        worst_up = std::isnan(worst_up) ? up : std::min(worst_up, up);
+      }
+      s << "\n";
+    }
+  }
+  s << "    (before them, the process's first parallel call, " << r.startup_runs
+    << " runs on 2 threads, in which oneTBB starts its\n     worker threads: "
+    << duration(r.startup_first) << "; the same call again: " << duration(r.startup_again) << ")\n";
   const double vs_reset = ratio(t1, reset), vs_new = ratio(t1, fresh);
-  s << "  speed-up, 2 against 1: threads " << fmt("%.2fx", threads_up) << ", MPI ranks "
-    << (m2 ? fmt("%.2fx", ranks_up) : "-")
+  s << "  speed-up, 2 against 1: threads " << fmt("%.2fx", threads_up) << " (median; worst call "
+    << fmt("%.2fx", worst_up) << "), MPI ranks " << (m2 ? fmt("%.2fx", ranks_up) : "-")
     << (m2 ? std::string(r.mpi_same ? " (results bitwise the threads')"
                                     : " (results DIFFER from the threads')")
            : " (" + r.mpi_note + ")")
@@ -515,11 +542,16 @@ std::string ensemble_table(const EnsembleResult& r, const EnsemblePlan& plan) {
     }
     return verdict(true, up >= 1.8);
   };
+  // Both 2-thread rows, every call: each row must have had about two cores.
+  const EnsembleRow* least = t2;
+  if (t2new != nullptr && (least == nullptr || t2new->cores < least->cores)) {
+    least = t2new;
+  }
   const auto target = [&](const std::string& what, const std::string& v) {
     s << "    " << pad(what, 46) << v << "\n";
   };
   s << "  targets:\n";
-  target("threads, 2 against 1, >= 1.8x", speed_up(t1, t2, threads_up));
+  target("threads, 2 against 1, >= 1.8x, every call", speed_up(t1, least, worst_up));
   target("MPI ranks, 2 against 1, >= 1.8x", speed_up(m1, m2, ranks_up));
   target("per run within 1.2x of a serial loop",
          verdict(t1 && reset, vs_reset <= 1.2) + " (" + fmt("%.2fx", vs_reset) + ")");

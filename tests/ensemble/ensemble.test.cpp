@@ -1,11 +1,17 @@
 // tumble::Ensemble and tumble::integrate_variants (include/tumble/ensemble/), each property
 // against an independent expectation:
 //  - the tumbling body (I = diag(1, 2, 3), omega0 = (0.1, 2, 0.05) rad/s dispersed per run, MRP in
-//    the quasi-velocity form, so that runs switch charts) integrated by OdeintIntegrator and by
-//    the CVODE SceneIntegrator (Adams and BDF): every run's result, with 1 thread and with 2
-//    threads (several grain sizes), bitwise equal to a plain serial loop that makes a new
-//    integrator for each run and calls its integrate(); and each run's attitude near the Jacobi
-//    elliptic solution (tests/support/torque_free.hpp);
+//    the quasi-velocity form, so that runs switch charts) integrated by OdeintIntegrator
+//    (Fehlberg 7(8); Dormand-Prince, whose integrate() interpolates its outputs, with one output
+//    time and with several) and by the CVODE SceneIntegrator (Adams and BDF): every run's result,
+//    with 1 thread and with 2 threads (several grain sizes), and over two calls of one ensemble
+//    (its integrators kept), bitwise equal to a plain serial loop that makes a new integrator
+//    for each run and calls its integrate(); and each run's attitude near the Jacobi elliptic
+//    solution (tests/support/torque_free.hpp);
+//  - a factory that takes the run index (per-run options: a step budget that run 2 cannot
+//    meet), against the serial loop of the same factory;
+//  - more threads than the machine has: the threads the ensemble says it runs, and the
+//    statistics of a call;
 //  - failing runs (a non-finite initial state, an observer that throws, a load that throws in a
 //    per-run scene) reported with their index and message, the other runs' results unchanged and
 //    equal to the serial loop's, including the run a thread does right after a failed one; their
@@ -27,6 +33,7 @@
 #include <vector>
 
 #include <Eigen/Core>
+#include <oneapi/tbb/info.h>
 
 #include "integrate/alloc_counter.hpp"
 #include "support/catch.hpp"
@@ -82,9 +89,10 @@ struct Tumbling {
   SceneT scene;
   tumble::BodyId<Body> b;
   std::vector<SceneState> states;  ///< per run
-  std::vector<double> times{0.0, 5.0, 10.0, 15.0, kEnd};
+  std::vector<double> times;
 
-  explicit Tumbling(std::size_t runs) {
+  explicit Tumbling(std::size_t runs, std::vector<double> outputs = {0.0, 5.0, 10.0, 15.0, kEnd})
+      : times(std::move(outputs)) {
     b = scene.add(Body(tumble::test::tumbling_mass()), {.rotation = kR0, .omega = kTumblingOmega});
     for (std::size_t i = 0; i < runs; ++i) {
       SceneState s = scene.initial_state();
@@ -115,6 +123,13 @@ const auto make_odeint = [](const SceneT& s, double t0, const SceneState& y0) {
 const auto make_cvode = [](const SceneT& s, double t0, const SceneState& y0) {
   return tumble::SceneIntegrator<SceneT>(
       s, t0, y0, tumble::test::integrator_options(tumble::CvodeMethod::adams, kTol));
+};
+// Dormand-Prince: integrate() reads the outputs off the dense output (interpolate_outputs, on by
+// default), where advance(t) would step to each output time: a run must take the same path.
+const auto make_dopri = [](const SceneT& s, double t0, const SceneState& y0) {
+  tumble::OdeintOptions o = odeint_options();
+  o.method = tumble::OdeintMethod::dopri5;
+  return Odeint(s, t0, y0, o);
 };
 // BDF keeps more between steps (the Newton iteration, the exact Jacobian and when to update it):
 // all of it reset() must not carry from one run into the next.
@@ -152,12 +167,12 @@ void check_same(const RunOutcome<Final>& got, const Final& want, std::size_t i) 
 }
 
 /// Each serial run against the Jacobi elliptic solution of its own omega0.
-void check_physics(const std::vector<SerialRun>& serial) {
+void check_physics(const Tumbling& t, const std::vector<SerialRun>& serial) {
   for (std::size_t i = 0; i < serial.size(); ++i) {
     const tumble::test::TorqueFreeBody exact(kTumblingInertia, run_omega(i), kR0);
     const double bound = tumble::test::global_error_bound(kTol, serial[i].steps, 2.0, kEnd);
     INFO("run " << i << ", " << serial[i].steps << " steps, bound " << bound);
-    CHECK(serial[i].final.outputs == 5);
+    CHECK(serial[i].final.outputs == static_cast<int>(t.times.size()));
     CHECK(serial[i].switches > 0);
     CHECK(tumble::test::rotation_angle_between(serial[i].final.attitude, exact.rotation(kEnd)) <
           bound);
@@ -165,10 +180,12 @@ void check_physics(const std::vector<SerialRun>& serial) {
   }
 }
 
-template <class Make> void check_thread_independence(const Make& make, std::size_t runs) {
-  const Tumbling t(runs);
+template <class Make>
+void check_thread_independence(const Make& make, std::size_t runs,
+                               std::vector<double> times = {0.0, 5.0, 10.0, 15.0, kEnd}) {
+  const Tumbling t(runs, std::move(times));
   const auto serial = serial_loop(t, make, runs);
-  check_physics(serial);
+  check_physics(t, serial);
   const tumble::Ensemble ensemble1(t.scene, make, {.threads = 1});
   const auto initial = [&](std::size_t i) -> const SceneState& { return t.states[i]; };
   const auto one = ensemble1.template integrate<Final>(runs, initial, 0.0, t.times, t.observer());
@@ -178,13 +195,16 @@ template <class Make> void check_thread_independence(const Make& make, std::size
   }
   for (const std::size_t grain : {std::size_t{1}, std::size_t{3}}) {
     for (const int threads : {2, 0}) {
-      INFO(threads << " threads, grain " << grain);
       const tumble::Ensemble ensemble(t.scene, make, {.threads = threads, .grain = grain});
-      const auto many =
-          ensemble.template integrate<Final>(runs, initial, 0.0, t.times, t.observer());
-      REQUIRE(many.size() == runs);
-      for (std::size_t i = 0; i < runs; ++i) {
-        check_same(many[i], serial[i].final, i);
+      // Twice: the second call runs on the integrators the first one left in the threads.
+      for (const int call : {1, 2}) {
+        INFO(threads << " threads, grain " << grain << ", call " << call);
+        const auto many =
+            ensemble.template integrate<Final>(runs, initial, 0.0, t.times, t.observer());
+        REQUIRE(many.size() == runs);
+        for (std::size_t i = 0; i < runs; ++i) {
+          check_same(many[i], serial[i].final, i);
+        }
       }
     }
   }
@@ -198,7 +218,20 @@ bool mentions(const std::string& what, const std::string& part) {
 
 TEST_CASE("ensemble: runs equal a serial loop to the bit, whatever the threads",
           "[ensemble][ensemble]") {
-  SECTION("OdeintIntegrator") { check_thread_independence(make_odeint, 16); }
+  SECTION("OdeintIntegrator, Fehlberg 7(8)") { check_thread_independence(make_odeint, 16); }
+  SECTION("OdeintIntegrator, Fehlberg 7(8), one output") {
+    check_thread_independence(make_odeint, 8, {kEnd});
+  }
+  SECTION("OdeintIntegrator, Dormand-Prince, several outputs") {
+    check_thread_independence(make_dopri, 16);
+  }
+  // The issue's case: outputs inside the steps, read off the dense output.
+  SECTION("OdeintIntegrator, Dormand-Prince, two outputs") {
+    check_thread_independence(make_dopri, 8, {0.5 * kEnd, kEnd});
+  }
+  SECTION("OdeintIntegrator, Dormand-Prince, one output") {
+    check_thread_independence(make_dopri, 8, {kEnd});
+  }
   SECTION("SceneIntegrator (CVODE, Adams)") { check_thread_independence(make_cvode, 8); }
   SECTION("SceneIntegrator (CVODE, BDF)") { check_thread_independence(make_cvode_bdf, 6); }
 }
@@ -255,6 +288,76 @@ TEST_CASE("ensemble: a failing run is reported with its index, the others are ke
     CHECK(folded.errors[1].run == 6);
     CHECK(folded.errors[1].message == "observer refuses run 6");
   }
+}
+
+// A factory that takes the run index gives each run options of its own: here run 2 a step
+// budget it cannot meet and the odd runs a looser tolerance. The expectation is a serial loop
+// of the same factory's integrators.
+TEST_CASE("ensemble: a factory with the run index gives per-run options", "[ensemble][ensemble]") {
+  constexpr std::size_t runs = 8, starved = 2;
+  const Tumbling t(runs);
+  const auto make = [](const SceneT& s, double t0, const SceneState& y0, std::size_t run) {
+    tumble::OdeintOptions o = odeint_options();
+    o.rtol = run % 2 == 1 ? 1e3 * kTol : kTol;
+    o.atol = o.rtol;
+    o.max_steps = run == starved ? 5 : o.max_steps;
+    return Odeint(s, t0, y0, o);
+  };
+  std::vector<Final> want(runs);
+  for (std::size_t i = 0; i < runs; ++i) {
+    if (i != starved) {
+      Odeint integrator = make(t.scene, 0.0, t.states[i], i);
+      integrator.integrate(
+          t.times, [&](double tk, const SceneState& s) { t.observer()(want[i], i, tk, s); });
+    }
+  }
+  CHECK(want[1].attitude != want[0].attitude);  // the tolerances differ, so do the results
+  const auto initial = [&](std::size_t i) -> const SceneState& { return t.states[i]; };
+  for (const int threads : {1, 2}) {
+    INFO(threads << " threads");
+    const tumble::Ensemble ensemble(t.scene, make, {.threads = threads});
+    STATIC_REQUIRE(decltype(ensemble)::per_run_factory);
+    const auto got = ensemble.integrate<Final>(runs, initial, 0.0, t.times, t.observer());
+    REQUIRE(got.size() == runs);
+    for (std::size_t i = 0; i < runs; ++i) {
+      if (i == starved) {
+        REQUIRE(got[i].failed());
+        CHECK(mentions(got[i].error().message, "max_steps"));
+      } else {
+        check_same(got[i], want[i], i);
+      }
+    }
+    const tumble::EnsembleStatistics st = ensemble.statistics();
+    CHECK(st.runs == runs);
+    CHECK(st.failed == 1);
+  }
+}
+
+// More threads than the machine lets this process use: the ensemble runs as many as it may
+// (TBB's default concurrency, an independent count) and says so; the results are unchanged.
+TEST_CASE("ensemble: more threads than cores run as many as there are, and say so",
+          "[ensemble][ensemble]") {
+  constexpr std::size_t runs = 6;
+  const Tumbling t(runs, {kEnd});
+  const auto serial = serial_loop(t, make_odeint, runs);
+  const auto initial = [&](std::size_t i) -> const SceneState& { return t.states[i]; };
+  const int cores = oneapi::tbb::info::default_concurrency();
+  const tumble::Ensemble ensemble(t.scene, make_odeint, {.threads = cores + 3});
+  CHECK(ensemble.threads() == cores);
+  CHECK(ensemble.options().threads == cores + 3);  // what was asked stays readable
+  CHECK(ensemble.statistics().runs == 0);          // no call yet
+  const auto got = ensemble.integrate<Final>(runs, initial, 0.0, t.times, t.observer());
+  for (std::size_t i = 0; i < runs; ++i) {
+    check_same(got[i], serial[i].final, i);
+  }
+  const tumble::EnsembleStatistics st = ensemble.statistics();
+  CHECK(st.runs == runs);
+  CHECK(st.failed == 0);
+  CHECK(st.threads == cores);
+  CHECK(st.threads_used >= 1);
+  CHECK(st.threads_used <= cores);
+  const tumble::Ensemble serial_ensemble(t.scene, make_odeint, {.threads = 1});
+  CHECK(serial_ensemble.threads() == 1);
 }
 
 TEST_CASE("ensemble: bad output times or options throw before any run", "[ensemble][ensemble]") {
@@ -360,7 +463,7 @@ TEST_CASE("ensemble: per-run scenes (dispersed inertia) and a failing load",
 
 // The ensemble allocates nothing per step (operator new counted; Eigen's own allocations are
 // the integrators' concern, tested in tests/integrate/), and less per run than making an
-// integrator costs: a thread's integrator is reset, not made again.
+// integrator costs: a thread's integrator is reset, not made again, and kept for the next call.
 TEST_CASE("ensemble: no allocation per step, less per run than an integrator",
           "[ensemble][ensemble]") {
   const Tumbling t(8);
@@ -369,8 +472,8 @@ TEST_CASE("ensemble: no allocation per step, less per run than an integrator",
     f.omega = s.y.tail<3>();
     ++f.outputs;
   };
-  const tumble::Ensemble ensemble(t.scene, make_odeint, {.threads = 1});
-  const auto count = [&](std::size_t runs, double end) {
+  using E = tumble::Ensemble<SceneT, decltype(make_odeint)>;
+  const auto count = [&](const E& ensemble, std::size_t runs, double end) {
     const std::vector<double> times{end};
     tumble::test::reset_allocation_count();
     tumble::test::set_allocation_counting(true);
@@ -379,10 +482,14 @@ TEST_CASE("ensemble: no allocation per step, less per run than an integrator",
     CHECK(tumble::failures(r).empty());
     return tumble::test::allocation_count();
   };
-  const long short_runs = count(4, 2.0);
-  const long long_runs = count(4, kEnd);  // ten times the steps
+  // Each on a new ensemble: the first call makes the thread's integrator.
+  const auto fresh = [&](std::size_t runs, double end) {
+    return count(E(t.scene, make_odeint, {.threads = 1}), runs, end);
+  };
+  const long short_runs = fresh(4, 2.0);
+  const long long_runs = fresh(4, kEnd);  // ten times the steps
   CHECK(long_runs == short_runs);
-  const long per_run = (count(8, 2.0) - short_runs) / 4;
+  const long per_run = (fresh(8, 2.0) - short_runs) / 4;
   tumble::test::reset_allocation_count();
   tumble::test::set_allocation_counting(true);
   { const Odeint one(t.scene, 0.0, t.states[0], odeint_options()); }
@@ -390,4 +497,12 @@ TEST_CASE("ensemble: no allocation per step, less per run than an integrator",
   const long construction = tumble::test::allocation_count();
   INFO(per_run << " allocations per run, " << construction << " to make an integrator");
   CHECK(per_run < construction);
+  // A second call of one ensemble runs on the integrator the first one made: its results'
+  // vector and its runs' resets, nothing more.
+  const E kept(t.scene, make_odeint, {.threads = 1});
+  const long first = count(kept, 4, 2.0);
+  const long second = count(kept, 4, 2.0);
+  INFO(first << " allocations in the first call, " << second << " in the second");
+  CHECK(second <= 1 + 4 * per_run);
+  CHECK(second < first);
 }

@@ -147,7 +147,33 @@ TEMPLATE_TEST_CASE_SIG("a fixed body's block holds its attitude and rates only",
                     std::invalid_argument);
   tumble::set_velocity(s.scene, s.a, copy, Vector3d::Zero(), Vector3d(0.1, 0.2, 0.3));
   CHECK((tumble::omega(s.scene, s.a, copy) - Vector3d(0.1, 0.2, 0.3)).norm() < 10 * kEps);
+  // A held body's own form sets omega alone: the same state as with v = 0, the attitude kept.
+  tumble::SceneState held = y;
+  tumble::set_velocity(s.scene, s.a, held, Vector3d(0.1, 0.2, 0.3));
+  CHECK(held.y == copy.y);
+  CHECK(tumble::rotation(s.scene, s.a, held) == tumble::rotation(s.scene, s.a, y));
 }
+
+namespace {
+// reaction_force and angular_acceleration evaluate the loads: the time they are evaluated at is
+// a required argument (a forgotten one would silently mean t = 0 for time-dependent loads).
+template <class S, class B>
+concept AccelerationsWithoutTime = requires(const S& scene, tumble::BodyId<B> b,
+                                            const tumble::SceneState& y) {
+  tumble::reaction_force(scene, b, y);
+}
+|| requires(const S& scene, tumble::BodyId<B> b, const tumble::SceneState& y) {
+  tumble::angular_acceleration(scene, b, y);
+};
+template <class S, class B>
+concept AccelerationsWithTime = requires(const S& scene, tumble::BodyId<B> b,
+                                         const tumble::SceneState& y) {
+  tumble::reaction_force(scene, b, y, 0.0);
+  tumble::angular_acceleration(scene, b, y, 0.0);
+};
+static_assert(AccelerationsWithTime<TopScene<StateForm::quasi_velocities>, FixedEP>);
+static_assert(!AccelerationsWithoutTime<TopScene<StateForm::quasi_velocities>, FixedEP>);
+}  // namespace
 
 TEMPLATE_TEST_CASE_SIG("rhs of a fixed body: the body's own rates, nothing translational",
                        "[scene][fixed_point]", ((StateForm F), F), StateForm::generalized,
@@ -163,7 +189,7 @@ TEMPLATE_TEST_CASE_SIG("rhs of a fixed body: the body's own rates, nothing trans
   // The rate of omega (quasi form) or of thetadot (generalized) from the scene's alpha: alpha =
   // G thetaddot + Gdot thetadot, the same alpha tumble::angular_acceleration reports.
   const auto& e = std::as_const(s.scene).entry(s.b);
-  const Vector3d alpha = tumble::angular_acceleration(s.scene, s.b, y);
+  const Vector3d alpha = tumble::angular_acceleration(s.scene, s.b, y, 0.0);
   if constexpr (F == StateForm::quasi_velocities) {
     CHECK((ydot.segment<3>(e.rates) - alpha).norm() < 100 * kEps * (1 + alpha.norm()));
   } else {

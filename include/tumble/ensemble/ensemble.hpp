@@ -12,9 +12,18 @@
 //
 // - Any integrator of the library (EnsembleIntegrator, detail/run.hpp), made by the user's
 //   factory make(scene, t0, s0): its options, its method, its size template argument stay the
-//   user's. Each thread makes one on its first run and reset()s it for the next, so a run costs
-//   no construction (no CVODE memory, no Odeint buffers) and allocates only what reset() does;
-//   after a failed run the thread's integrator is dropped and made anew.
+//   user's. A run is the integrator's own integrate() over the output times: it computes what a
+//   serial integrate() computes, to the bit, whatever the method and the output times.
+// - One integrator per thread, kept from one call to the next: each thread makes one on its
+//   first run and reset()s it for the next, so a run costs no construction (no CVODE memory, no
+//   Odeint buffers) and allocates only what reset() does; after a failed run the thread's
+//   integrator is dropped and made anew. They live as long as the ensemble: the factory is called
+//   once per thread, not once per call (an ensemble whose factory should make other integrators
+//   is a new Ensemble). A call made while another call of the same ensemble runs (from another
+//   thread) makes integrators of its own.
+// - A factory that takes the run's index, make(scene, t0, s0, run), gives each run integrator
+//   options of its own (a step budget, a tolerance): it is called for every run, and the run's
+//   integrator lives for that run only.
 // - The observer is called at each output time with the run's result R (value-initialized at
 //   the run's start), the run's index, the time, the state and, if it takes a fifth argument,
 //   the scene (for the observables, scene/observables.hpp); what it keeps in R is all that is
@@ -26,12 +35,16 @@
 //   results are not all kept.
 // - A run that throws (the integrator, a load, an event, initial(i) or the observer) gets a
 //   RunError with its index and message; the other runs go on and keep their results.
+// - threads() says how many threads the runs are spread over (EnsembleOptions::threads, at most
+//   the cores the process may use); statistics() what the last call ran.
 // The factory, initial(i), the observer and the scene's loads and events are called concurrently
 // from several threads: they must only read shared data. Per-run scenes (dispersed inertia,
 // loads): variants.hpp.
 
 #include <algorithm>
 #include <cstddef>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <type_traits>
@@ -48,14 +61,25 @@ namespace tumble {
 
 template <class SceneT, class MakeIntegrator> class MpiEnsemble;
 
+/// What the last call of an Ensemble (integrate or fold) ran.
+struct EnsembleStatistics {
+  std::size_t runs = 0;    ///< runs done
+  std::size_t failed = 0;  ///< of which failed (a RunError)
+  int threads = 0;         ///< the threads the runs were spread over (Ensemble::threads())
+  int threads_used = 0;    ///< of which did at least one run (fewer when TBB gave fewer)
+};
+
 /// One scene, many runs. MakeIntegrator: make(const SceneT&, double t0, const SceneState& s0)
-/// returns an integrator of the scene starting at (t0, s0).
+/// returns an integrator of the scene starting at (t0, s0); or make(..., std::size_t run), which
+/// is called for every run (per-run options).
 template <class SceneT, class MakeIntegrator> class Ensemble {
  public:
-  using Integrator = std::remove_cvref_t<
-      std::invoke_result_t<const MakeIntegrator&, const SceneT&, double, const SceneState&>>;
+  using Integrator = detail::FactoryIntegrator<MakeIntegrator, SceneT>;
   static_assert(EnsembleIntegrator<Integrator>,
-                "the factory must return an integrator with advance(t) and reset(t, state)");
+                "the factory must return an integrator with integrate(times, observer) and "
+                "reset(t, state)");
+  /// True when the factory takes the run index: an integrator per run, not per thread.
+  static constexpr bool per_run_factory = detail::factory_takes_run<MakeIntegrator, SceneT>;
 
   /// The scene must outlive the ensemble; it is only read.
   Ensemble(const SceneT& scene, MakeIntegrator make, EnsembleOptions options = {})
@@ -63,11 +87,25 @@ template <class SceneT, class MakeIntegrator> class Ensemble {
     validate(options_);
   }
   Ensemble(SceneT&&, MakeIntegrator, EnsembleOptions = {}) = delete;
+  /// A copy has the scene, the factory and the options, and integrators of its own.
+  Ensemble(const Ensemble& o) : scene_(o.scene_), make_(o.make_), options_(o.options_) {}
+  Ensemble& operator=(const Ensemble& o) {
+    if (this != &o) {
+      scene_ = o.scene_;
+      make_ = o.make_;
+      options_ = o.options_;
+      kept_ = std::make_unique<Kept>();
+    }
+    return *this;
+  }
+  Ensemble(Ensemble&&) noexcept = default;
+  Ensemble& operator=(Ensemble&&) noexcept = default;
+  ~Ensemble() = default;
 
-  /// Runs 0, ..., runs-1, run i from (t0, initial(i)) to each of `times` (finite, non-decreasing,
-  /// not before t0), calling observe(R& result, std::size_t run, double t, const SceneState&
-  /// [, const SceneT&]) at each. initial(i) returns the run's SceneState (a copy or a
-  /// reference), e.g. the scene's initial state with dispersed rates.
+  /// Runs 0, ..., runs-1, run i from (t0, initial(i)) over `times` (finite, non-decreasing, not
+  /// before t0) with its integrator's integrate(), calling observe(R& result, std::size_t run,
+  /// double t, const SceneState& [, const SceneT&]) at each. initial(i) returns the run's
+  /// SceneState (a copy or a reference), e.g. the scene's initial state with dispersed rates.
   ///
   /// \returns one RunOutcome per run, in run order: its R, or its RunError.
   /// \throws std::invalid_argument for bad output times (before any run).
@@ -76,10 +114,16 @@ template <class SceneT, class MakeIntegrator> class Ensemble {
                                        const Times& times, Observer&& observe) const {
     detail::check_output_times(t0, times);
     std::vector<RunOutcome<R>> out(runs);
-    RunPool<Slot> pool(options_);
-    pool.for_each(0, runs, [&](Slot& integrator, std::size_t i) {
-      out[i] = run<R>(integrator, i, initial, t0, times, observe);
+    EnsembleStatistics stats{runs, 0, threads(), 0};
+    with_pool([&](Pool& pool) {
+      stats.threads_used = pool.for_each(0, runs, [&](Slot& integrator, std::size_t i) {
+        out[i] = run<R>(integrator, i, initial, t0, times, observe);
+      });
     });
+    for (const RunOutcome<R>& o : out) {
+      stats.failed += o.failed() ? 1 : 0;
+    }
+    record(stats);
     return out;
   }
 
@@ -98,52 +142,107 @@ template <class SceneT, class MakeIntegrator> class Ensemble {
     }
     FoldedRuns<T> folded{std::move(init), {}, 0};
     std::vector<RunOutcome<R>> out(std::min(block, runs));
-    RunPool<Slot> pool(options_);  // one integrator per thread for all blocks
-    for (std::size_t first = 0; first < runs; first += block) {
-      const std::size_t last = std::min(runs, first + block);
-      pool.for_each(first, last, [&](Slot& integrator, std::size_t i) {
-        out[i - first] = run<R>(integrator, i, initial, t0, times, observe);
-      });
-      for (std::size_t i = first; i < last; ++i) {
-        RunOutcome<R>& o = out[i - first];
-        if (o.ok()) {
-          folded.value = combine(std::move(folded.value), i, o.value());
-          ++folded.completed;
-        } else {
-          folded.errors.push_back(o.error());
+    EnsembleStatistics stats{runs, 0, threads(), 0};
+    with_pool([&](Pool& pool) {  // one integrator per thread for all blocks
+      for (std::size_t first = 0; first < runs; first += block) {
+        const std::size_t last = std::min(runs, first + block);
+        const int used = pool.for_each(first, last, [&](Slot& integrator, std::size_t i) {
+          out[i - first] = run<R>(integrator, i, initial, t0, times, observe);
+        });
+        stats.threads_used = std::max(stats.threads_used, used);
+        for (std::size_t i = first; i < last; ++i) {
+          RunOutcome<R>& o = out[i - first];
+          if (o.ok()) {
+            folded.value = combine(std::move(folded.value), i, o.value());
+            ++folded.completed;
+          } else {
+            folded.errors.push_back(o.error());
+          }
+          o = RunOutcome<R>();
         }
-        o = RunOutcome<R>();
       }
-    }
+    });
+    stats.failed = folded.errors.size();
+    record(stats);
     return folded;
   }
 
   [[nodiscard]] const SceneT& scene() const { return *scene_; }
   [[nodiscard]] const EnsembleOptions& options() const { return options_; }
+  /// The threads the runs are spread over: EnsembleOptions::threads (0: TBB's choice), at most
+  /// the cores this process may use (ensemble_threads, parallel.hpp).
+  [[nodiscard]] int threads() const { return ensemble_threads(options_); }
+  /// What the last call that finished ran (zeros before the first).
+  [[nodiscard]] EnsembleStatistics statistics() const {
+    if (!kept_) {
+      return {};
+    }
+    const std::lock_guard lock(kept_->stats_mutex);
+    return kept_->stats;
+  }
 
  private:
   // The same runs over MPI ranks (mpi.hpp), each rank on this class's threads and runs.
   template <class, class> friend class MpiEnsemble;
 
   using Slot = std::optional<Integrator>;  ///< a thread's integrator, made on its first run
+  using Pool = RunPool<Slot>;
+
+  /// The threads' integrators, kept from one call to the next, and the last call's statistics.
+  struct Kept {
+    std::mutex mutex;  ///< held by the call using `pool`
+    std::unique_ptr<Pool> pool;
+    std::mutex stats_mutex;
+    EnsembleStatistics stats;
+  };
+
+  /// f(pool) on the kept pool, or, while another call holds it (or after a move), on a pool of
+  /// this call's own.
+  template <class F> void with_pool(F&& f) const {
+    std::unique_lock<std::mutex> lock;
+    if (kept_) {
+      lock = std::unique_lock<std::mutex>(kept_->mutex, std::try_to_lock);
+    }
+    if (lock.owns_lock()) {
+      if (!kept_->pool) {
+        kept_->pool = std::make_unique<Pool>(options_);
+      }
+      f(*kept_->pool);
+    } else {
+      Pool pool(options_);
+      f(pool);
+    }
+  }
+
+  void record(const EnsembleStatistics& stats) const {
+    if (kept_) {
+      const std::lock_guard lock(kept_->stats_mutex);
+      kept_->stats = stats;
+    }
+  }
 
   /// Run i on the thread's integrator: reset to (t0, initial(i)), or made there on the thread's
-  /// first run or after a failed one.
+  /// first run or after a failed one; with a factory that takes the run index, made for the run.
   template <class R, class Initial, class Times, class Observer>
   RunOutcome<R> run(Slot& integrator, std::size_t i, Initial& initial, double t0,
                     const Times& times, Observer& observe) const {
     return detail::guarded_run<R>(i, [&] {
-      try {
-        const auto& s0 = initial(i);  // a reference, or a temporary kept alive here
-        if (integrator) {
-          integrator->reset(t0, s0);
-        } else {
-          integrator.emplace(make_(*scene_, t0, s0));
+      const auto& s0 = initial(i);  // a reference, or a temporary kept alive here
+      if constexpr (per_run_factory) {
+        Integrator own = detail::make_for_run(make_, *scene_, t0, s0, i);
+        return detail::observe_run<R>(*scene_, own, i, times, observe);
+      } else {
+        try {
+          if (integrator) {
+            integrator->reset(t0, s0);
+          } else {
+            integrator.emplace(detail::make_for_run(make_, *scene_, t0, s0, i));
+          }
+          return detail::observe_run<R>(*scene_, *integrator, i, times, observe);
+        } catch (...) {
+          integrator.reset();  // nothing of a failed run is carried into the next
+          throw;
         }
-        return detail::observe_run<R>(*scene_, *integrator, i, times, observe);
-      } catch (...) {
-        integrator.reset();  // nothing of a failed run is carried into the next
-        throw;
       }
     });
   }
@@ -151,6 +250,7 @@ template <class SceneT, class MakeIntegrator> class Ensemble {
   const SceneT* scene_;
   MakeIntegrator make_;
   EnsembleOptions options_;
+  std::unique_ptr<Kept> kept_ = std::make_unique<Kept>();
 };
 
 }  // namespace tumble

@@ -285,8 +285,10 @@ template <class SceneT, class MakeIntegrator> class MpiEnsemble {
                                        const Times& times, Observer&& observe) const {
     // One gather of all the runs: runs (at least 1) results at once.
     detail::mpi_agree<R>(comm_, runs, std::max<std::size_t>(runs, 1), t0, times);
-    RunPool<Slot> pool(local_.options());
-    return run_block<R>(pool, 0, runs, initial, t0, times, observe);
+    std::vector<RunOutcome<R>> out;
+    local_.with_pool(
+        [&](Pool& pool) { out = run_block<R>(pool, 0, runs, initial, t0, times, observe); });
+    return out;
   }
 
   /// Ensemble::fold over the ranks: the runs are done `block` at a time, each block spread over
@@ -300,19 +302,21 @@ template <class SceneT, class MakeIntegrator> class MpiEnsemble {
                      Observer&& observe, T init, Fold&& combine, std::size_t block = 4096) const {
     detail::mpi_agree<R>(comm_, runs, block, t0, times);
     FoldedRuns<T> folded{std::move(init), {}, 0};
-    RunPool<Slot> pool(local_.options());  // one integrator per thread for all blocks
-    for (std::size_t first = 0; first < runs; first += block) {
-      const std::size_t last = std::min(runs, first + block);
-      std::vector<RunOutcome<R>> out = run_block<R>(pool, first, last, initial, t0, times, observe);
-      for (std::size_t k = 0; k < out.size(); ++k) {  // empty except at rank 0
-        if (out[k].ok()) {
-          folded.value = combine(std::move(folded.value), first + k, out[k].value());
-          ++folded.completed;
-        } else {
-          folded.errors.push_back(out[k].error());
+    local_.with_pool([&](Pool& pool) {  // one integrator per thread for all blocks
+      for (std::size_t first = 0; first < runs; first += block) {
+        const std::size_t last = std::min(runs, first + block);
+        std::vector<RunOutcome<R>> out =
+            run_block<R>(pool, first, last, initial, t0, times, observe);
+        for (std::size_t k = 0; k < out.size(); ++k) {  // empty except at rank 0
+          if (out[k].ok()) {
+            folded.value = combine(std::move(folded.value), first + k, out[k].value());
+            ++folded.completed;
+          } else {
+            folded.errors.push_back(out[k].error());
+          }
         }
       }
-    }
+    });
     return folded;
   }
 
@@ -329,10 +333,11 @@ template <class SceneT, class MakeIntegrator> class MpiEnsemble {
 
  private:
   using Slot = typename Local::Slot;
+  using Pool = typename Local::Pool;
 
   /// Runs [first, last) over the ranks, this rank's part on its threads (detail::mpi_run_block).
   template <class R, class Initial, class Times, class Observer>
-  std::vector<RunOutcome<R>> run_block(RunPool<Slot>& pool, std::size_t first, std::size_t last,
+  std::vector<RunOutcome<R>> run_block(Pool& pool, std::size_t first, std::size_t last,
                                        Initial& initial, double t0, const Times& times,
                                        Observer& observe) const {
     return detail::mpi_run_block<R>(

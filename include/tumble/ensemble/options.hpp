@@ -12,8 +12,9 @@ namespace tumble {
 /// independent and deterministic, and each writes only its own result): they set the speed only.
 struct EnsembleOptions {
   /// At most this many threads: 1 runs the ensemble serially in the calling thread (no TBB task
-  /// is made); n > 1 runs it in a task arena of n threads; 0 lets TBB choose (the cores this
-  /// process may use).
+  /// is made); n > 1 runs it in a task arena of n threads, or of as many as TBB allows this
+  /// process (the cores it may use) if fewer (Ensemble::threads() says which); 0 lets TBB choose
+  /// (the cores this process may use).
   int threads = 0;
   /// Runs per task (TBB's grain size): larger amortizes the scheduling over many short runs,
   /// 1 balances best when runs differ much in cost (a run that switches charts or fails early).

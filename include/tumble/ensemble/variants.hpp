@@ -28,13 +28,13 @@ template <class R, class MakeScene, class MakeIntegrator, class Times, class Obs
 RunOutcome<R> variant_run(std::size_t i, MakeScene& make_scene, MakeIntegrator& make_integrator,
                           double t0, const Times& times, Observer& observe) {
   using SceneT = std::remove_cvref_t<std::invoke_result_t<MakeScene&, std::size_t>>;
-  using Integrator = std::remove_cvref_t<
-      std::invoke_result_t<MakeIntegrator&, const SceneT&, double, const SceneState&>>;
+  using Integrator = FactoryIntegrator<MakeIntegrator, SceneT>;
   static_assert(EnsembleIntegrator<Integrator>,
-                "the factory must return an integrator with advance(t) and reset(t, state)");
+                "the factory must return an integrator with integrate(times, observer) and "
+                "reset(t, state)");
   return guarded_run<R>(i, [&] {
     const SceneT scene = make_scene(i);
-    Integrator integrator = make_integrator(scene, t0, scene.initial_state());
+    Integrator integrator = make_for_run(make_integrator, scene, t0, scene.initial_state(), i);
     return observe_run<R>(scene, integrator, i, times, observe);
   });
 }
@@ -43,7 +43,8 @@ RunOutcome<R> variant_run(std::size_t i, MakeScene& make_scene, MakeIntegrator& 
 
 /// Runs 0, ..., runs-1: run i builds its scene, scene = make_scene(i) (a Scene, by value, its
 /// initial state the run's), integrates it with make_integrator(scene, t0,
-/// scene.initial_state()) to each of `times`, and calls observe(R& result, std::size_t run,
+/// scene.initial_state() [, i]) (the run index if the factory takes it) over `times`, with the
+/// integrator's integrate(), and calls observe(R& result, std::size_t run,
 /// double t, const SceneState& [, const SceneT& the run's scene]) at each.
 ///
 /// \returns one RunOutcome per run, in run order.

@@ -34,10 +34,11 @@ auto with_loads(const SceneT& scene, BodyId<Body> b, const SceneStateView& s, do
 /// The angular acceleration alpha = omegadot of body b at time t, body components, rad/s^2: what
 /// G thetaddot + Gdot thetadot (Eq. 1.10) gives for the thetaddot of Eq. (1.32), computed from
 /// the Newton-Euler closed form (RigidBody::velocity_rates) without thetaddot. The same in every
-/// chart and in both state forms.
+/// chart and in both state forms. The time is required: loads may depend on it (a user force, a
+/// moment of t), and a forgotten one would silently evaluate them at t = 0.
 template <class SceneT, class Body>
 [[nodiscard]] Vector3<double> angular_acceleration(const SceneT& scene, BodyId<Body> b,
-                                                   const SceneStateView& s, double t = 0.0) {
+                                                   const SceneStateView& s, double t) {
   return detail::with_loads(scene, b, s, t, [&](const auto& e, const auto& k, const auto& w) {
     return e.body.velocity_rates(detail::theta_of(e, s), k, w).alpha;
   });
@@ -45,12 +46,13 @@ template <class SceneT, class Body>
 
 /// The force the support exerts on body b, held at its fixed point (ReferencePoint::fixed_point),
 /// at time t, inertial components, N: the r-rows of Eq. (1.32) with rddot_oc = 0 (see
-/// RigidBody::reaction_force), F_R = m a_g - F with F the resultant of the applied loads.
+/// RigidBody::reaction_force), F_R = m a_g - F with F the resultant of the applied loads. The
+/// time is required, as for angular_acceleration: the loads are evaluated at it.
 template <class SceneT, class Body>
 requires Body::fixed [[nodiscard]] Vector3<double> reaction_force(const SceneT& scene,
                                                                   BodyId<Body> b,
                                                                   const SceneStateView& s,
-                                                                  double t = 0.0) {
+                                                                  double t) {
   return detail::with_loads(scene, b, s, t, [&](const auto& e, const auto& k, const auto& w) {
     return e.body.reaction_force(detail::rotation_of(e, s), k.omega, w);
   });

@@ -121,7 +121,8 @@ template <class SceneT, class Body>
 
 /// Sets the velocity (inertial, m/s) and the angular velocity (body, rad/s) of body b in s, e.g.
 /// in an event action (an impulse). The attitude and the chart are unchanged.
-/// \throws std::invalid_argument for a nonzero v on a body held at a fixed point.
+/// \throws std::invalid_argument for a nonzero v on a body held at a fixed point (whose own form,
+///         set_velocity(scene, b, s, omega_body), sets omega only).
 template <class SceneT, class Body>
 void set_velocity(const SceneT& scene, BodyId<Body> b, SceneState& s, const Vector3<double>& v,
                   const Vector3<double>& omega_body) {
@@ -140,6 +141,14 @@ void set_velocity(const SceneT& scene, BodyId<Body> b, SceneState& s, const Vect
     s.y.template segment<Body::n_theta>(e.rates + e.theta_at) =
         Body::Param::thetadot(detail::theta_of(e, s), omega_body);
   }
+}
+
+/// Sets the angular velocity (body, rad/s) of body b, held at a fixed point, in s: its only
+/// velocity (set_velocity with v = 0). The attitude and the chart are unchanged.
+template <class SceneT, class Body>
+requires Body::fixed void set_velocity(const SceneT& scene, BodyId<Body> b, SceneState& s,
+                                       const Vector3<double>& omega_body) {
+  set_velocity(scene, b, s, Vector3<double>::Zero(), omega_body);
 }
 
 /// Sum of the kinetic energies, J.

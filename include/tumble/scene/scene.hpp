@@ -34,6 +34,7 @@
 #include <Eigen/Core>
 
 #include "tumble/body/rigid_body.hpp"
+#include "tumble/core/cache_line.hpp"
 #include "tumble/core/jet.hpp"
 #include "tumble/core/math.hpp"
 #include "tumble/force/concept.hpp"
@@ -140,8 +141,11 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
   template <class Body> using Entry = detail::SceneEntry<Body, Form>;
   template <class Load> using Attached = detail::Attached<Load>;
   using LoadTypes = std::tuple<L...>;
-  /// Per body type, the kinematics its loads read (the layout of a workspace).
-  using KinematicsStorage = std::tuple<std::vector<BodyKinematics<double, B::reference>>...>;
+  /// Per body type, the kinematics its loads read (the layout of a workspace), in cache lines of
+  /// their own (written at every evaluation, by one thread: core/cache_line.hpp).
+  using KinematicsStorage =
+      std::tuple<std::vector<BodyKinematics<double, B::reference>,
+                             CacheLineAllocator<BodyKinematics<double, B::reference>>>...>;
   /// The index of a body type in Bodies<B...> (its group).
   template <class Body> static constexpr std::size_t group_of = detail::index_of<Body, B...>();
 

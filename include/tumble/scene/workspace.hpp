@@ -7,7 +7,9 @@
 // A workspace belongs to whoever evaluates (an integrator, a thread, a test): two evaluations at
 // once need two workspaces, while the scene itself is shared read-only. It is movable, not
 // copyable (the kinematics views point into its own storage), and it fits every scene with the
-// same bodies (it holds no pointer into the scene).
+// same bodies (it holds no pointer into the scene). Its buffers are whole cache lines of their own
+// (core/cache_line.hpp): the scratch one thread writes at every evaluation never shares a line
+// with another thread's data, wherever the heap puts them.
 
 #include <cstddef>
 #include <stdexcept>
@@ -17,6 +19,7 @@
 
 #include "tumble/body/kinematics.hpp"
 #include "tumble/body/wrench.hpp"
+#include "tumble/core/cache_line.hpp"
 #include "tumble/core/types.hpp"
 
 namespace tumble {
@@ -60,9 +63,10 @@ template <class SceneT> class SceneWorkspace {
 
  private:
   typename SceneT::KinematicsStorage kinematics_;
-  std::vector<Wrench<double>> wrench_;
-  std::vector<const KinematicsView<double>*> views_;
-  std::vector<Matrix<double, 7, 6>> gain_;
+  template <class T> using Lines = std::vector<T, CacheLineAllocator<T>>;
+  Lines<Wrench<double>> wrench_;
+  Lines<const KinematicsView<double>*> views_;
+  Lines<Matrix<double, 7, 6>> gain_;
 };
 
 }  // namespace tumble

@@ -1,9 +1,9 @@
 #pragma once
 // What ensemble.hpp and variants.hpp share: the integrator requirements, the check of the output
-// times, and one run (advance to each output time, observe, catch the run's failure).
+// times, and one run (the integrator's own integrate() over the output times, the observer at
+// each, the run's failure caught).
 
 #include <cmath>
-#include <concepts>
 #include <cstddef>
 #include <cstdio>
 #include <exception>
@@ -11,19 +11,29 @@
 #include <string>
 #include <type_traits>
 #include <utility>
+#include <vector>
 
 #include "tumble/ensemble/outcome.hpp"
 #include "tumble/scene/state.hpp"
 
 namespace tumble {
 
-/// What an ensemble needs of an integrator: advance(t) to an output time, state() there, and
-/// reset(t, s) to restart from another state. SceneIntegrator (CVODE) and
-/// OdeintIntegrator (Boost.Odeint) model it.
+namespace detail {
+/// An observer of integrate() that keeps nothing (what EnsembleIntegrator is checked with).
+struct IgnoreOutput {
+  void operator()(double, const SceneState&) const {}
+};
+}  // namespace detail
+
+/// What an ensemble needs of an integrator: integrate(times, observer), calling observer(t,
+/// const SceneState&) at each output time, and reset(t, s) to restart from another state.
+/// SceneIntegrator (CVODE), OdeintIntegrator (Boost.Odeint) and AutoIntegrator model it. A run is its
+/// integrator's integrate(), so that it computes what a serial integrate() computes, to the bit,
+/// with every option of the integrator (Dormand-Prince's interpolated outputs among them).
 template <class I>
-concept EnsembleIntegrator = requires(I& integrator, double t, const SceneState& s) {
-  integrator.advance(t);
-  { integrator.state() } -> std::convertible_to<const SceneState&>;
+concept EnsembleIntegrator = requires(I& integrator, double t, const SceneState& s,
+                                      const std::vector<double>& times) {
+  integrator.integrate(times, detail::IgnoreOutput{});
   integrator.reset(t, s);
 };
 
@@ -49,25 +59,46 @@ template <class Times> void check_output_times(double t0, const Times& times) {
   }
 }
 
-/// Advances `integrator` to each output time and calls observe(result, run, t, state, scene)
-/// there, or observe(result, run, t, state) when the observer takes no scene.
+/// Integrates over the output times with the integrator's own integrate() and calls
+/// observe(result, run, t, state, scene) at each, or observe(result, run, t, state) when the
+/// observer takes no scene.
 template <class R, class SceneT, class Integrator, class Times, class Observer>
 R observe_run(const SceneT& scene, Integrator& integrator, std::size_t run, const Times& times,
               Observer& observe) {
   R result{};
-  for (const auto& value : times) {
-    const double t = static_cast<double>(value);
-    integrator.advance(t);
-    const SceneState& s = integrator.state();
+  integrator.integrate(times, [&](double t, const SceneState& s) {
     if constexpr (std::is_invocable_v<Observer&, R&, std::size_t, double, const SceneState&,
                                       const SceneT&>) {
       observe(result, run, t, s, scene);
     } else {
       observe(result, run, t, s);
     }
-  }
+  });
   return result;
 }
+
+/// True when the factory takes the run's index too: make(scene, t0, s0, run).
+template <class Make, class SceneT>
+inline constexpr bool factory_takes_run =
+    std::is_invocable_v<const Make&, const SceneT&, double, const SceneState&, std::size_t>;
+
+/// The integrator of run `run` from (t0, s0): make(scene, t0, s0, run), or make(scene, t0, s0)
+/// for a factory that takes no run index.
+template <class Make, class SceneT>
+auto make_for_run(const Make& make, const SceneT& scene, double t0, const SceneState& s0,
+                  std::size_t run) {
+  if constexpr (factory_takes_run<Make, SceneT>) {
+    return make(scene, t0, s0, run);
+  } else {
+    return make(scene, t0, s0);
+  }
+}
+
+/// The type of integrator a factory makes (with or without the run index).
+template <class Make, class SceneT>
+using FactoryIntegrator = std::remove_cvref_t<decltype(make_for_run(
+    std::declval<const Make&>(), std::declval<const SceneT&>(), 0.0,
+    std::declval<const SceneState&>(), std::size_t{}))>;
 
 /// The outcome of a run: body() -> R, or the RunError of what it threw.
 template <class R, class Body> RunOutcome<R> guarded_run(std::size_t run, Body&& body) {
