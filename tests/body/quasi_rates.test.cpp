@@ -92,8 +92,11 @@ template <class P, ReferencePoint Ref> void check_quasi_rates() {
       CHECK((vr.acceleration - a_c).norm() <= kTol * ag_scale);
       CHECK((vr.alpha - alpha).norm() <= kTol * alpha_scale);
       const typename Body::Coords qdd = body.accelerations(s.q, s.qdot, w);
-      const tumble::VelocityRates<double> vg = body.velocity_rates(s.theta(), s.omega, w);
-      CHECK(qdd.template head<3>() == vg.acceleration);  // the same computation, same omega
+      // The same computation with the same omega: the body's own omega = G thetadot (written out
+      // by P::omega; s.omega is the product with the matrix G, equal to it up to rounding).
+      const tumble::VelocityRates<double> vg =
+          body.velocity_rates(s.theta(), Body::omega(s.q, s.qdot), w);
+      CHECK(qdd.template head<3>() == vg.acceleration);
       const Vector3d alpha_g =
           P::G(s.theta()) * qdd.template tail<n>() + P::Gdot_thetadot(s.theta(), s.thetadot());
       CHECK((alpha_g - vg.alpha).norm() < kTol * alpha_scale);

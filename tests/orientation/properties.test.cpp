@@ -552,6 +552,17 @@ template <class P, class S> constexpr bool signatures_for_scalar() {
   static_assert(std::is_same_v<decltype(P::from_quaternion(*q)), C>);
   static_assert(std::is_same_v<decltype(P::singularity_distance(*theta)), S>);
   static_assert(std::is_same_v<decltype(P::canonical(*theta)), C>);
+  static_assert(std::is_same_v<decltype(P::omega(*theta, *theta)), Vector3<S>>);
+  // The overloads of the precomputed functions of theta (concept.hpp).
+  using Pre = typename P::template Precomputed<S>;
+  const Pre* pre = nullptr;
+  static_assert(std::is_same_v<decltype(P::precompute(*theta)), Pre>);
+  static_assert(std::is_same_v<decltype(P::rotation(*pre)), Matrix3<S>>);
+  static_assert(std::is_same_v<decltype(P::G(*pre)), GMatrix<P, S>>);
+  static_assert(std::is_same_v<decltype(P::omega(*pre, *theta)), Vector3<S>>);
+  static_assert(std::is_same_v<decltype(P::Gdot_thetadot(*pre, *theta)), Vector3<S>>);
+  static_assert(std::is_same_v<decltype(P::thetadot(*pre, *w)), C>);
+  static_assert(std::is_same_v<decltype(P::thetaddot(*pre, *theta, *w)), C>);
   if constexpr (P::has_constraint) {
     static_assert(std::is_same_v<decltype(P::constraint(*theta)), S>);
   }
@@ -561,12 +572,27 @@ template <class P, class S> constexpr bool signatures_for_scalar() {
 /// Takes the address of every function for S, which instantiates its definition (so that members
 /// no test calls still compile, for long double as well).
 template <class P, class S> int instantiate_all() {
+  // The functions of theta and their overloads of P::Precomputed<S> (concept.hpp): the casts
+  // pick one overload each.
+  using C = Coords<P, S>;
+  using Pre = typename P::template Precomputed<S>;
+  using V3 = Vector3<S>;
   const void* fns[] = {
-      reinterpret_cast<const void*>(&P::template rotation<S>),
-      reinterpret_cast<const void*>(&P::template G<S>),
-      reinterpret_cast<const void*>(&P::template Gdot_thetadot<S>),
-      reinterpret_cast<const void*>(&P::template thetadot<S>),
-      reinterpret_cast<const void*>(&P::template thetaddot<S>),
+      reinterpret_cast<const void*>(static_cast<Matrix3<S> (*)(const C&)>(&P::rotation)),
+      reinterpret_cast<const void*>(static_cast<GMatrix<P, S> (*)(const C&)>(&P::G)),
+      reinterpret_cast<const void*>(static_cast<V3 (*)(const C&, const C&)>(&P::omega)),
+      reinterpret_cast<const void*>(static_cast<V3 (*)(const C&, const C&)>(&P::Gdot_thetadot)),
+      reinterpret_cast<const void*>(static_cast<C (*)(const C&, const V3&)>(&P::thetadot)),
+      reinterpret_cast<const void*>(
+          static_cast<C (*)(const C&, const C&, const V3&)>(&P::thetaddot)),
+      reinterpret_cast<const void*>(static_cast<Pre (*)(const C&)>(&P::precompute)),
+      reinterpret_cast<const void*>(static_cast<Matrix3<S> (*)(const Pre&)>(&P::rotation)),
+      reinterpret_cast<const void*>(static_cast<GMatrix<P, S> (*)(const Pre&)>(&P::G)),
+      reinterpret_cast<const void*>(static_cast<V3 (*)(const Pre&, const C&)>(&P::omega)),
+      reinterpret_cast<const void*>(static_cast<V3 (*)(const Pre&, const C&)>(&P::Gdot_thetadot)),
+      reinterpret_cast<const void*>(static_cast<C (*)(const Pre&, const V3&)>(&P::thetadot)),
+      reinterpret_cast<const void*>(
+          static_cast<C (*)(const Pre&, const C&, const V3&)>(&P::thetaddot)),
       reinterpret_cast<const void*>(&P::template from_rotation<S>),
       reinterpret_cast<const void*>(&P::template to_quaternion<S>),
       reinterpret_cast<const void*>(&P::template from_quaternion<S>),

@@ -82,6 +82,9 @@ class RigidBody {
   static constexpr int nx = nq + nv;         ///< size of the quasi-velocity state [q; v; omega]
 
   using Theta = typename P::template Coords<S>;
+  /// What R, G, Gdot thetadot and the inverse map share at one attitude (orientation/concept.hpp):
+  /// every function below evaluates it once per call and passes it through.
+  using Precomputed = typename P::template Precomputed<S>;
   using Coords = Vector<S, nq>;            ///< q, qdot, qddot, f_v, Q
   using MassMatrix = Matrix<S, nq, nq>;    ///< M (Eq. 1.23)
   using PointJacobian = Matrix<S, 3, nq>;  ///< L_r (Eq. 1.8)
@@ -168,18 +171,20 @@ class RigidBody {
   }
   /// Eq. (1.8): L_r = [I, -R S(r) G] (fixed: -R S(r) G).
   [[nodiscard]] static PointJacobian point_jacobian(const Coords& q, const Vector3<S>& r) {
-    const Theta th = theta(q);
+    const Precomputed pre = P::precompute(theta(q));
     PointJacobian l;
     if constexpr (!fixed) {
       l.template leftCols<3>().setIdentity();
     }
-    l.template rightCols<n_theta>() = -P::rotation(th) * (skew(r) * P::G(th));
+    l.template rightCols<n_theta>() = -P::rotation(pre) * (skew(r) * P::G(pre));
     return l;
   }
   /// Eq. (1.7): rdot_op = L_r qdot = rdot_oc + R (omega x r) (rdot_oc = 0 when fixed).
   [[nodiscard]] static Vector3<S> point_velocity(const Coords& q, const Coords& qdot,
                                                  const Vector3<S>& r) {
-    const Vector3<S> v = rotation(q) * omega(q, qdot).cross(r);
+    const Precomputed pre = P::precompute(theta(q));
+    const Vector3<S> v =
+        P::rotation(pre) * P::omega(pre, Theta(qdot.template tail<n_theta>())).cross(r);
     if constexpr (fixed) {
       return v;
     } else {
@@ -189,13 +194,14 @@ class RigidBody {
   /// Eq. (1.11): a_v = R [S(omega)^2 r - S(r) Gdot thetadot].
   [[nodiscard]] static Vector3<S> point_velocity_acceleration(const Coords& q, const Coords& qdot,
                                                               const Vector3<S>& r) {
-    const Theta th = theta(q);
-    const Vector3<S> w = omega(q, qdot);
+    const Precomputed pre = P::precompute(theta(q));
+    const Theta thd = qdot.template tail<n_theta>();
+    const Vector3<S> w = P::omega(pre, thd);
     Vector3<S> a = w.cross(w.cross(r));
     if constexpr (!detail::gdot_vanishes<P>()) {
-      a -= r.cross(P::Gdot_thetadot(th, Theta(qdot.template tail<n_theta>())));
+      a -= r.cross(P::Gdot_thetadot(pre, thd));
     }
-    return P::rotation(th) * a;
+    return P::rotation(pre) * a;
   }
   /// Eq. (1.12): rddot_op = L_r qddot + a_v.
   [[nodiscard]] static Vector3<S> point_acceleration(const Coords& q, const Coords& qdot,
@@ -208,8 +214,8 @@ class RigidBody {
   /// centroid (Eq. 1.33). For Euler parameters M is singular with null vector [0; p]. Fixed:
   /// the theta-block G^T I_c G alone.
   [[nodiscard]] MassMatrix mass_matrix(const Coords& q) const {
-    const Theta th = theta(q);
-    const Matrix<S, 3, n_theta> g = P::G(th);
+    const Precomputed pre = P::precompute(theta(q));
+    const Matrix<S, 3, n_theta> g = P::G(pre);
     MassMatrix m;
     m.template bottomRightCorner<n_theta, n_theta>() =
         g.transpose() * mp_.inertia_reference() * g;  // Eq. (1.21c), (1.22)
@@ -219,7 +225,7 @@ class RigidBody {
         m.template topRightCorner<3, n_theta>().setZero();
         m.template bottomLeftCorner<n_theta, 3>().setZero();
       } else {
-        const Matrix<S, 3, n_theta> m12 = -P::rotation(th) * (skew(mp_.first_moment()) * g);
+        const Matrix<S, 3, n_theta> m12 = -P::rotation(pre) * (skew(mp_.first_moment()) * g);
         m.template topRightCorner<3, n_theta>() = m12;  // Eq. (1.21b)
         m.template bottomLeftCorner<n_theta, 3>() = m12.transpose();
       }
@@ -232,15 +238,15 @@ class RigidBody {
   ///   f_v^theta = -G^T [S(omega) I_c omega + I_c Gdot thetadot]
   /// (f_v^theta alone when fixed).
   [[nodiscard]] Coords centrifugal_coriolis(const Coords& q, const Coords& qdot) const {
-    const Theta th = theta(q);
+    const Precomputed pre = P::precompute(theta(q));
     const Theta thd = qdot.template tail<n_theta>();
-    const Matrix<S, 3, n_theta> g = P::G(th);
-    const Vector3<S> w = g * thd;
+    const Matrix<S, 3, n_theta> g = P::G(pre);
+    const Vector3<S> w = P::omega(pre, thd);
     const Matrix3<S>& ic = mp_.inertia_reference();
     Vector3<S> inner = w.cross(ic * w);
     Vector3<S> gdot_thd = Vector3<S>::Zero();
     if constexpr (!detail::gdot_vanishes<P>()) {
-      gdot_thd = P::Gdot_thetadot(th, thd);
+      gdot_thd = P::Gdot_thetadot(pre, thd);
       inner += ic * gdot_thd;
     }
     Coords f;
@@ -250,7 +256,7 @@ class RigidBody {
     } else if constexpr (!fixed) {
       const Vector3<S>& s = mp_.first_moment();
       f.template head<n_r>() =
-          P::rotation(th) * (-w.cross(w.cross(s)) + s.cross(gdot_thd));  // Eq. (1.26)
+          P::rotation(pre) * (-w.cross(w.cross(s)) + s.cross(gdot_thd));  // Eq. (1.26)
     }
     return f;
   }
@@ -291,10 +297,10 @@ class RigidBody {
     if constexpr (!fixed) {
       k.velocity = qdot.template head<3>();
     }
-    const Theta th = theta(q);
-    k.omega = angular_velocity<P, S>(th, qdot.template tail<n_theta>());
+    const Precomputed pre = P::precompute(theta(q));
+    k.omega = P::omega(pre, Theta(qdot.template tail<n_theta>()));
     if constexpr (with_rotation || !at_centroid) {
-      k.rotation = P::rotation(th);
+      k.rotation = P::rotation(pre);
     }
     return k;
   }
@@ -305,10 +311,10 @@ class RigidBody {
   ///         attitude exactly at a singularity of P).
   [[nodiscard]] Coords accelerations(const Coords& q, const Coords& qdot,
                                      const Wrench<S>& w) const {
-    const Theta th = theta(q);
+    const Precomputed pre = P::precompute(theta(q));
     const Theta thd = qdot.template tail<n_theta>();
-    const Vector3<S> om = angular_velocity<P, S>(th, thd);
-    return accelerations_impl(q, th, thd, om, w);
+    const Vector3<S> om = P::omega(pre, thd);
+    return accelerations_impl(q, pre, thd, om, w, nullptr);
   }
 
   /// qddot from M qddot = f_v + Q for a generalized force Q (Eq. 1.32).
@@ -320,8 +326,8 @@ class RigidBody {
   /// The same, for a body and its kinematics already evaluated (the scene's hot path).
   [[nodiscard]] Coords accelerations(const Coords& q, const Coords& qdot, const Kinematics& k,
                                      const Wrench<S>& w) const {
-    return accelerations_impl(q, theta(q), Theta(qdot.template tail<n_theta>()), k.omega, w,
-                              &k.rotation);
+    return accelerations_impl(q, P::precompute(theta(q)), Theta(qdot.template tail<n_theta>()),
+                              k.omega, w, &k.rotation);
   }
 
   /// The velocity rates (a_c inertial, alpha body) for the attitude theta, the angular velocity
@@ -330,23 +336,23 @@ class RigidBody {
   /// finiteness: accelerations() and quasi_rates() check their whole result.
   [[nodiscard]] VelocityRates<S> velocity_rates(const Theta& th, const Vector3<S>& om,
                                                 const Wrench<S>& w) const {
-    return velocity_rates_impl(th, om, w, nullptr);
+    return velocity_rates_impl([&] { return P::rotation(th); }, om, w);
   }
   /// The same for a body whose kinematics are evaluated (omega and, off the centroid, R from k;
   /// R may include a chart base).
-  [[nodiscard]] VelocityRates<S> velocity_rates(const Theta& th, const Kinematics& k,
+  [[nodiscard]] VelocityRates<S> velocity_rates(const Theta& /*th*/, const Kinematics& k,
                                                 const Wrench<S>& w) const {
-    return velocity_rates_impl(th, k.omega, w, &k.rotation);
+    return velocity_rates_impl([&] { return k.rotation; }, k.omega, w);
   }
 
   /// Eq. (1.10): alpha = G thetaddot + Gdot thetadot, the angular acceleration in body
   /// components, from the generalized accelerations (e.g. those of accelerations()).
   [[nodiscard]] static Vector3<S> angular_acceleration(const Coords& q, const Coords& qdot,
                                                        const Coords& qddot) {
-    const Theta th = theta(q);
-    Vector3<S> a = P::G(th) * qddot.template tail<n_theta>();
+    const Precomputed pre = P::precompute(theta(q));
+    Vector3<S> a = P::omega(pre, Theta(qddot.template tail<n_theta>()));
     if constexpr (!detail::gdot_vanishes<P>()) {
-      a += P::Gdot_thetadot(th, Theta(qdot.template tail<n_theta>()));
+      a += P::Gdot_thetadot(pre, Theta(qdot.template tail<n_theta>()));
     }
     return a;
   }
@@ -359,9 +365,7 @@ class RigidBody {
   /// with alpha from the theta-rows (velocity_rates): what the applied force F leaves of m a_g.
   [[nodiscard]] Vector3<S> reaction_force(const Matrix3<S>& rotation, const Vector3<S>& om,
                                           const Wrench<S>& w) const requires fixed {
-    // theta is not read at a fixed point (moments about c need no R): a zero stands in for it, not
-    // an uninitialized Theta(), which GCC 12 -O3 reports (-Wmaybe-uninitialized).
-    const Vector3<S> alpha = velocity_rates_impl(Theta::Zero(), om, w, nullptr).alpha;
+    const Vector3<S> alpha = velocity_rates_impl([&] { return rotation; }, om, w).alpha;
     const Vector3<S>& s = mp_.first_moment();
     const Vector3<S> ab = alpha.cross(s) + om.cross(om.cross(s));
     return rotation * ab - w.force;
@@ -380,16 +384,16 @@ class RigidBody {
     if constexpr (!fixed) {
       v = x.template segment<3>(nq);
     }
-    return quasi_rates_impl(x.template head<nq>(), th, v, om,
-                            velocity_rates_impl(th, om, w, nullptr), w);
+    const Precomputed pre = P::precompute(th);
+    return quasi_rates_impl(x.template head<nq>(), pre, v, om,
+                            velocity_rates_impl([&] { return P::rotation(pre); }, om, w), w);
   }
   /// The same, for a body and its kinematics already evaluated (the scene's hot path: v and omega
   /// are read from k).
   [[nodiscard]] QuasiCoords quasi_rates(const Coords& q, const Kinematics& k,
                                         const Wrench<S>& w) const {
-    const Theta th = theta(q);
-    return quasi_rates_impl(q, th, k.velocity, k.omega,
-                            velocity_rates_impl(th, k.omega, w, &k.rotation), w);
+    return quasi_rates_impl(q, P::precompute(theta(q)), k.velocity, k.omega,
+                            velocity_rates_impl([&] { return k.rotation; }, k.omega, w), w);
   }
 
   // --- energy and momenta ---------------------------------------------------------------------
@@ -431,46 +435,50 @@ class RigidBody {
   }
 
  private:
-  Coords accelerations_impl(const Coords& q, const Theta& th, const Theta& thd,
-                            const Vector3<S>& om, const Wrench<S>& w,
-                            const Matrix3<S>* rot = nullptr) const {
-    const VelocityRates<S> vr = velocity_rates_impl(th, om, w, rot);
+  /// rot: R when the caller has it (the kinematics of a scene), else nullptr (from pre).
+  Coords accelerations_impl(const Coords& q, const Precomputed& pre, const Theta& thd,
+                            const Vector3<S>& om, const Wrench<S>& w, const Matrix3<S>* rot) const {
+    const VelocityRates<S> vr =
+        velocity_rates_impl([&] { return rot ? Matrix3<S>(*rot) : P::rotation(pre); }, om, w);
     Coords qdd;
     if constexpr (!fixed) {
       qdd.template head<3>() = vr.acceleration;
     }
-    qdd.template tail<n_theta>() = P::thetaddot(th, thd, vr.alpha);  // Eq. (1.10)
+    qdd.template tail<n_theta>() = P::thetaddot(pre, thd, vr.alpha);  // Eq. (1.10)
     if (!detail::all_finite_fast(qdd)) [[unlikely]] {
-      throw_non_finite(q, th, w);
+      throw_non_finite(q, w);
     }
     return qdd;
   }
 
-  QuasiCoords quasi_rates_impl(const Coords& q, const Theta& th, const Vector3<S>& v,
+  QuasiCoords quasi_rates_impl(const Coords& q, const Precomputed& pre, const Vector3<S>& v,
                                const Vector3<S>& om, const VelocityRates<S>& vr,
                                const Wrench<S>& w) const {
     QuasiCoords xd;
-    xd.template segment<n_theta>(n_r) = P::thetadot(th, om);  // inverse of Eq. (1.5)
+    xd.template segment<n_theta>(n_r) = P::thetadot(pre, om);  // inverse of Eq. (1.5)
     xd.template tail<3>() = vr.alpha;
     if constexpr (!fixed) {
       xd.template head<3>() = v;
       xd.template segment<3>(nq) = vr.acceleration;
     }
     if (!detail::all_finite_fast(xd)) [[unlikely]] {
-      throw_non_finite(q, th, w, true);
+      throw_non_finite(q, w, true);
     }
     return xd;
   }
 
-  VelocityRates<S> velocity_rates_impl(const Theta& th, const Vector3<S>& om, const Wrench<S>& w,
-                                       const Matrix3<S>* rot) const {
+  /// rotation_fn(): R, called only off the centroid (a body at its centroid or held at a fixed
+  /// point does not need it, and does not compute it).
+  template <class RotationFn>
+  VelocityRates<S> velocity_rates_impl(RotationFn&& rotation_fn, const Vector3<S>& om,
+                                       const Wrench<S>& w) const {
     VelocityRates<S> vr;
     // Products are evaluated into named vectors: small expression trees that the compiler inlines
     // whole (nested product expressions were left as out-of-line calls, 30% of the time).
     // Eq. (1.32) through the Newton-Euler closed form of the file comment; Eq. (1.33) at the
     // centroid, where r_g = 0 removes the coupling terms.
     if constexpr (at_centroid) {
-      (void)rot;
+      (void)rotation_fn;
       const Vector3<S> h = mp_.inertia_centroid() * om;  // angular momentum about g, body
       const Vector3<S> mg = w.moment - om.cross(h);
       vr.alpha = mp_.inertia_centroid_inverse().lazyProduct(mg);
@@ -478,13 +486,13 @@ class RigidBody {
     } else if constexpr (fixed) {
       // The theta-rows of Eq. (1.32) with rddot_oc = 0: I_c alpha = M_c - omega x I_c omega,
       // moments about the fixed point c; the force at c (reaction included) does not enter.
-      (void)rot;
+      (void)rotation_fn;
       const Vector3<S> hc = mp_.inertia_reference() * om;
       const Vector3<S> mc = w.moment - om.cross(hc);
       vr.alpha = mp_.inertia_reference_inverse().lazyProduct(mc);
       vr.acceleration.setZero();
     } else {
-      const Matrix3<S> r = rot ? *rot : P::rotation(th);
+      const Matrix3<S> r = rotation_fn();
       const Vector3<S>& rg = mp_.centroid();
       const Vector3<S> h = mp_.inertia_centroid() * om;  // angular momentum about g, body
       // Moment about the centroid: M_g = M_c - r_g x F^f.
@@ -497,7 +505,8 @@ class RigidBody {
     return vr;
   }
 
-  [[noreturn]] static void throw_non_finite(const Coords& q, const Theta& th, const Wrench<S>& w,
+  /// Cold: the attitude is read from q again.
+  [[noreturn]] static void throw_non_finite(const Coords& q, const Wrench<S>& w,
                                             bool quasi = false) {
     std::ostringstream os;
     os << "tumble::RigidBody<" << P::name << ">::" << (quasi ? "quasi_rates" : "accelerations")
@@ -506,7 +515,7 @@ class RigidBody {
       os << "the state q has a non-finite entry";
     } else if (!detail::all_finite(w.force) || !detail::all_finite(w.moment)) {
       os << "the applied load has a non-finite entry";
-    } else if (!(detail::value(P::singularity_distance(th)) > 0)) {
+    } else if (!(detail::value(P::singularity_distance(theta(q))) > 0)) {
       os << "the attitude is at a singularity of " << P::name
          << " (G is singular): re-center the chart or use another parameterization";
     } else {

@@ -155,21 +155,21 @@ template <int a1, int a2, int a3> struct EulerAngles {
     }
   }
 
-  /// cos and sin of t2 and t3: all that G, Gdot thetadot and G^{-1} need.
-  template <class S> struct Trig23 {
-    S c2, s2, c3, s3;
-    explicit Trig23(const Coords<S>& theta) {
-      using std::cos;
-      using std::sin;
-      c2 = cos(theta(1));
-      s2 = sin(theta(1));
-      c3 = cos(theta(2));
-      s3 = sin(theta(2));
-    }
-  };
+ public:
+  /// What R, G, Gdot thetadot and G^{-1} share (concept.hpp): cos and sin of t2 and t3, all that
+  /// G, Gdot thetadot and G^{-1} need, and t1, whose cosine and sine only R needs (rotation()
+  /// evaluates them, once).
+  template <class S> struct Precomputed { S t1, c2, s2, c3, s3; };
+  template <class S> [[nodiscard]] static Precomputed<S> precompute(const Coords<S>& theta) {
+    using std::cos;
+    using std::sin;
+    return {theta(0), S(cos(theta(1))), S(sin(theta(1))), S(cos(theta(2))), S(sin(theta(2)))};
+  }
 
+ private:
   /// G^{-1} omega (the rows (c2 x c3, c3 x c1, c1 x c2) / det G in closed form).
-  template <class S> [[nodiscard]] static Coords<S> solve(const Trig23<S>& t, const Vector3<S>& w) {
+  template <class S>
+  [[nodiscard]] static Coords<S> solve(const Precomputed<S>& t, const Vector3<S>& w) {
     Coords<S> td;
     if constexpr (is_tait_bryan) {
       // G^{-1} rows (cN = cos tN, sN = sin tN, components (i, j, k)):
@@ -192,7 +192,7 @@ template <int a1, int a2, int a3> struct EulerAngles {
   /// Gdot thetadot = t1dot dc1/dt + t2dot dc2/dt (Eq. 1.10), the closed form of
   /// t1dot t2dot c1 x c2 + t1dot t3dot c1 x c3 + t2dot t3dot c2 x c3.
   template <class S>
-  [[nodiscard]] static Vector3<S> gdot_td(const Trig23<S>& t, const Coords<S>& td) {
+  [[nodiscard]] static Vector3<S> gdot_td(const Precomputed<S>& t, const Coords<S>& td) {
     const S& d1 = td(0);
     const S& d2 = td(1);
     const S& d3 = td(2);
@@ -212,28 +212,28 @@ template <int a1, int a2, int a3> struct EulerAngles {
  public:
   /// R = R_a1(t1) R_a2(t2) R_a3(t3) (Eq. 1.1): R_a3 is written down, then R_a2 and R_a1 are
   /// applied from the left, each touching two rows (no 3 x 3 products with zeros).
-  template <class S> [[nodiscard]] static Matrix3<S> rotation(const Coords<S>& theta) {
+  template <class S> [[nodiscard]] static Matrix3<S> rotation(const Precomputed<S>& pre) {
     using std::cos;
     using std::sin;
     Matrix3<S> r = Matrix3<S>::Identity();
     {
       constexpr int b = (a3 + 1) % 3;
       constexpr int d = (a3 + 2) % 3;
-      const S c = cos(theta(2));
-      const S s = sin(theta(2));
-      r(b, b) = c;
-      r(b, d) = -s;
-      r(d, b) = s;
-      r(d, d) = c;
+      r(b, b) = pre.c3;
+      r(b, d) = -pre.s3;
+      r(d, b) = pre.s3;
+      r(d, d) = pre.c3;
     }
-    rotate_rows<a2>(r, S(cos(theta(1))), S(sin(theta(1))));
-    rotate_rows<a1>(r, S(cos(theta(0))), S(sin(theta(0))));
+    rotate_rows<a2>(r, pre.c2, pre.s2);
+    rotate_rows<a1>(r, S(cos(pre.t1)), S(sin(pre.t1)));
     return r;
+  }
+  template <class S> [[nodiscard]] static Matrix3<S> rotation(const Coords<S>& theta) {
+    return rotation(precompute(theta));
   }
 
   /// G = [c1 c2 c3] with omega = G thetadot (Eq. 1.5); depends on t2 and t3 only.
-  template <class S> [[nodiscard]] static Matrix3<S> G(const Coords<S>& theta) {
-    const Trig23<S> t(theta);
+  template <class S> [[nodiscard]] static Matrix3<S> G(const Precomputed<S>& t) {
     Matrix3<S> g;
     if constexpr (is_tait_bryan) {
       g(kI, 0) = t.c2 * t.c3;
@@ -258,45 +258,70 @@ template <int a1, int a2, int a3> struct EulerAngles {
     }
     return g;
   }
+  template <class S> [[nodiscard]] static Matrix3<S> G(const Coords<S>& theta) {
+    return G(precompute(theta));
+  }
+
+  /// omega = G thetadot = t1dot c1 + t2dot c2 + t3dot c3 (Eq. 1.5), without the zeros of G.
+  template <class S>
+  [[nodiscard]] static Vector3<S> omega(const Precomputed<S>& t, const Coords<S>& td) {
+    Vector3<S> w;
+    if constexpr (is_tait_bryan) {
+      const S u = t.c2 * td(0);
+      w(kI) = t.c3 * u + pm<S>(t.s3 * td(1));
+      w(kJ) = t.c3 * td(1) - pm<S>(t.s3 * u);
+      w(kK) = pm<S>(t.s2 * td(0)) + td(2);
+    } else {
+      const S u = t.s2 * td(0);
+      w(kI) = t.c2 * td(0) + td(2);
+      w(kJ) = t.s3 * u + t.c3 * td(1);
+      w(kK) = pm<S>(t.c3 * u - t.s3 * td(1));
+    }
+    return w;
+  }
+  template <class S>
+  [[nodiscard]] static Vector3<S> omega(const Coords<S>& theta, const Coords<S>& td) {
+    return detail::with_precomputed<EulerAngles>(
+        [](const auto& pre, const auto& t) { return omega(pre, t); }, theta, td);
+  }
 
   /// Gdot thetadot (Eq. 1.10).
   template <class S>
+  [[nodiscard]] static Vector3<S> Gdot_thetadot(const Precomputed<S>& pre, const Coords<S>& td) {
+    return gdot_td(pre, td);
+  }
+  template <class S>
   [[nodiscard]] static Vector3<S> Gdot_thetadot(const Coords<S>& theta, const Coords<S>& td) {
-    if constexpr (std::is_arithmetic_v<S>) {
-      return gdot_td(Trig23<S>(theta), td);
-    } else {  // AD arguments mixing constants and variables (see detail::coherent)
-      const auto [th, t] = detail::coherent(theta, td);
-      return gdot_td(Trig23<S>(th), t);
-    }
+    return detail::with_precomputed<EulerAngles>(
+        [](const auto& pre, const auto& t) { return gdot_td(pre, t); }, theta, td);
   }
 
   /// thetadot = G^{-1} omega. Divides by cos t2 (Tait-Bryan) or sin t2 (proper): large but
   /// accurate near the singularity, not finite exactly at it.
   template <class S>
+  [[nodiscard]] static Coords<S> thetadot(const Precomputed<S>& pre, const Vector3<S>& omega) {
+    return solve(pre, omega);
+  }
+  template <class S>
   [[nodiscard]] static Coords<S> thetadot(const Coords<S>& theta, const Vector3<S>& omega) {
-    if constexpr (std::is_arithmetic_v<S>) {
-      return solve(Trig23<S>(theta), omega);
-    } else {
-      const auto [th, w] = detail::coherent(theta, omega);
-      return solve(Trig23<S>(th), w);
-    }
+    return detail::with_precomputed<EulerAngles>(
+        [](const auto& pre, const auto& w) { return solve(pre, w); }, theta, omega);
   }
 
   /// thetaddot = G^{-1} (alpha - Gdot thetadot), from G thetaddot = alpha - Gdot thetadot
   /// (Eq. 1.10).
   template <class S>
+  [[nodiscard]] static Coords<S> thetaddot(const Precomputed<S>& pre, const Coords<S>& td,
+                                           const Vector3<S>& alpha) {
+    const Vector3<S> rhs = alpha - gdot_td(pre, td);
+    return solve(pre, rhs);
+  }
+  template <class S>
   [[nodiscard]] static Coords<S> thetaddot(const Coords<S>& theta, const Coords<S>& td,
                                            const Vector3<S>& alpha) {
-    if constexpr (std::is_arithmetic_v<S>) {
-      const Trig23<S> t(theta);
-      const Vector3<S> rhs = alpha - gdot_td(t, td);
-      return solve(t, rhs);
-    } else {
-      const auto [th, tdc, a] = detail::coherent(theta, td, alpha);
-      const Trig23<S> t(th);
-      const Vector3<S> rhs = a - gdot_td(t, tdc);
-      return solve(t, rhs);
-    }
+    return detail::with_precomputed<EulerAngles>(
+        [](const auto& pre, const auto& t, const auto& a) { return thetaddot(pre, t, a); }, theta,
+        td, alpha);
   }
 
   /// The principal angles of R, t1, t3 in [-pi, pi] and t2 in [-pi/2, pi/2] (Tait-Bryan) or

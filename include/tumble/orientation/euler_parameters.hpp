@@ -56,6 +56,38 @@ struct EulerParameters {
         p(3) * w(0) + p(0) * w(1) - p(1) * w(2), -p(2) * w(0) + p(1) * w(1) + p(0) * w(2));
   }
 
+  /// What the functions of p share (concept.hpp): nothing beyond p, whose products are all
+  /// polynomial. The overloads of Precomputed<S> exist so that generic code treats every
+  /// parameterization alike.
+  template <class S> struct Precomputed { Coords<S> p; };
+  template <class S> [[nodiscard]] static Precomputed<S> precompute(const Coords<S>& p) {
+    return {p};
+  }
+  template <class S> [[nodiscard]] static Matrix3<S> rotation(const Precomputed<S>& pre) {
+    return rotation(pre.p);
+  }
+  template <class S> [[nodiscard]] static Matrix<S, 3, 4> G(const Precomputed<S>& pre) {
+    return G(pre.p);
+  }
+  template <class S>
+  [[nodiscard]] static Vector3<S> omega(const Precomputed<S>& pre, const Coords<S>& pdot) {
+    return omega(pre.p, pdot);
+  }
+  template <class S>
+  [[nodiscard]] static Vector3<S> Gdot_thetadot(const Precomputed<S>& /*pre*/,
+                                                const Coords<S>& /*pdot*/) {
+    return Vector3<S>::Zero();
+  }
+  template <class S>
+  [[nodiscard]] static Coords<S> thetadot(const Precomputed<S>& pre, const Vector3<S>& omega) {
+    return thetadot(pre.p, omega);
+  }
+  template <class S>
+  [[nodiscard]] static Coords<S> thetaddot(const Precomputed<S>& pre, const Coords<S>& pdot,
+                                           const Vector3<S>& alpha) {
+    return thetaddot(pre.p, pdot, alpha);
+  }
+
   /// R = (e0^2 - e.e) I + 2 e e^T + 2 e0 S(e)   (body -> inertial; Eq. 1.1).
   template <class S> [[nodiscard]] static Matrix3<S> rotation(const Coords<S>& p) {
     const S e0 = p(0), e1 = p(1), e2 = p(2), e3 = p(3);

@@ -55,53 +55,110 @@ struct ModifiedRodriguesParameters {
   static constexpr std::string_view name = "ModifiedRodriguesParameters";
   template <class S> using Coords = Vector3<S>;
 
-  /// R = I + (8 S(s)^2 + 4 (1 - s.s) S(s)) / (1 + s.s)^2   (body -> inertial; Eq. 1.1).
-  template <class S> [[nodiscard]] static Matrix3<S> rotation(const Coords<S>& s) {
+  /// What R, G, Gdot sdot share (concept.hpp): s, s.s and 1 / (1 + s.s).
+  template <class S> struct Precomputed {
+    Coords<S> s;
+    S ss, inv;
+  };
+  template <class S> [[nodiscard]] static Precomputed<S> precompute(const Coords<S>& s) {
     const S ss = s.squaredNorm();
-    const S den = S(1) + ss;
-    const S c = S(1) / (den * den);
-    const Matrix3<S> sk = skew(s);
-    return Matrix3<S>::Identity() + (c * S(8)) * (sk * sk) + (c * S(4) * (S(1) - ss)) * sk;
+    const S inv = S(1) / (S(1) + ss);
+    return {s, ss, inv};
+  }
+
+  /// R = I + (8 S(s)^2 + 4 (1 - s.s) S(s)) / (1 + s.s)^2
+  ///   = (1 - 8 s.s k) I + 8 k s s^T + 4 (1 - s.s) k S(s),  k = 1 / (1 + s.s)^2
+  /// (body -> inertial; Eq. 1.1).
+  template <class S> [[nodiscard]] static Matrix3<S> rotation(const Precomputed<S>& pre) {
+    const S k = pre.inv * pre.inv;
+    const S k8 = S(8) * k;
+    const S d = S(1) - k8 * pre.ss;
+    const S f = S(4) * (S(1) - pre.ss) * k;
+    const Vector3<S> fs = f * pre.s;
+    const Vector3<S> ks = k8 * pre.s;
+    Matrix3<S> r = ks * pre.s.transpose();
+    r.diagonal().array() += d;
+    r(0, 1) -= fs(2);
+    r(1, 0) += fs(2);
+    r(0, 2) += fs(1);
+    r(2, 0) -= fs(1);
+    r(1, 2) -= fs(0);
+    r(2, 1) += fs(0);
+    return r;
+  }
+  template <class S> [[nodiscard]] static Matrix3<S> rotation(const Coords<S>& s) {
+    return rotation(precompute(s));
   }
 
   /// G = 4 / (1 + s.s)^2 [(1 - s.s) I - 2 S(s) + 2 s s^T], omega = G sdot   (Eq. 1.5).
-  template <class S> [[nodiscard]] static Matrix3<S> G(const Coords<S>& s) {
-    const S ss = s.squaredNorm();
-    const S den = S(1) + ss;
-    const S c = S(4) / (den * den);
+  template <class S> [[nodiscard]] static Matrix3<S> G(const Precomputed<S>& pre) {
+    const S c = S(4) * pre.inv * pre.inv;
+    const Vector3<S>& s = pre.s;
     const Matrix3<S> m =
-        (S(1) - ss) * Matrix3<S>::Identity() - S(2) * skew(s) + S(2) * (s * s.transpose());
+        (S(1) - pre.ss) * Matrix3<S>::Identity() - S(2) * skew(s) + S(2) * (s * s.transpose());
     return c * m;
+  }
+  template <class S> [[nodiscard]] static Matrix3<S> G(const Coords<S>& s) {
+    return G(precompute(s));
+  }
+
+  /// omega = G sdot = 4 / (1 + s.s)^2 [(1 - s.s) sdot - 2 s x sdot + 2 (s.sdot) s]   (Eq. 1.5).
+  template <class S>
+  [[nodiscard]] static Vector3<S> omega(const Precomputed<S>& pre, const Coords<S>& sdot) {
+    const Vector3<S>& s = pre.s;
+    const S c = S(4) * pre.inv * pre.inv;
+    const S one_minus = S(1) - pre.ss;
+    const S ssd2 = S(2) * s.dot(sdot);
+    const Vector3<S> m = one_minus * sdot - S(2) * s.cross(sdot) + ssd2 * s;
+    return c * m;
+  }
+  template <class S>
+  [[nodiscard]] static Vector3<S> omega(const Coords<S>& s, const Coords<S>& sdot) {
+    return detail::with_precomputed<ModifiedRodriguesParameters>(
+        [](const auto& pre, const auto& sd) { return omega(pre, sd); }, s, sdot);
   }
 
   /// Gdot sdot = -4 (s.sdot) / (1 + s.s) omega + 8 |sdot|^2 s / (1 + s.s)^2   (Eq. 1.10).
   template <class S>
-  [[nodiscard]] static Vector3<S> Gdot_thetadot(const Coords<S>& s, const Coords<S>& sdot) {
-    const S ss = s.squaredNorm();
-    const S den = S(1) + ss;
-    const S inv = S(1) / den;
-    const S ssd = s.dot(sdot);
-    const S inv2 = inv * inv;
+  [[nodiscard]] static Vector3<S> Gdot_thetadot(const Precomputed<S>& pre, const Coords<S>& sdot) {
     // Scalars are combined from named (plain) values: for AD scalars, a product of two constants
     // kept as an expression cannot be resized to meet a variable's derivatives.
-    const S sd2 = S(8) * sdot.squaredNorm();
-    const Vector3<S> omega =
-        (S(4) * inv2) * ((S(1) - ss) * sdot - S(2) * s.cross(sdot) + (S(2) * ssd) * s);
-    return (S(-4) * ssd * inv) * omega + (sd2 * inv2) * s;
+    const S f = S(-4) * pre.s.dot(sdot) * pre.inv;
+    const S g = S(8) * sdot.squaredNorm() * pre.inv * pre.inv;
+    return f * omega(pre, sdot) + g * pre.s;
+  }
+  template <class S>
+  [[nodiscard]] static Vector3<S> Gdot_thetadot(const Coords<S>& s, const Coords<S>& sdot) {
+    return detail::with_precomputed<ModifiedRodriguesParameters>(
+        [](const auto& pre, const auto& sd) { return Gdot_thetadot(pre, sd); }, s, sdot);
   }
 
   /// sdot = 1/4 [(1 - s.s) I + 2 S(s) + 2 s s^T] omega = G^-1 omega.
   template <class S>
+  [[nodiscard]] static Coords<S> thetadot(const Precomputed<S>& pre, const Vector3<S>& omega) {
+    const Vector3<S>& s = pre.s;
+    const S one_minus = S(1) - pre.ss;
+    const S sw2 = S(2) * s.dot(omega);
+    return S(0.25) * (one_minus * omega + S(2) * s.cross(omega) + sw2 * s);
+  }
+  template <class S>
   [[nodiscard]] static Coords<S> thetadot(const Coords<S>& s, const Vector3<S>& omega) {
-    return S(0.25) *
-           ((S(1) - s.squaredNorm()) * omega + S(2) * s.cross(omega) + (S(2) * s.dot(omega)) * s);
+    return detail::with_precomputed<ModifiedRodriguesParameters>(
+        [](const auto& pre, const auto& w) { return thetadot(pre, w); }, s, omega);
   }
 
   /// sddot = G^-1 (alpha - Gdot sdot)   (Eq. 1.10 solved for the parameter accelerations).
   template <class S>
+  [[nodiscard]] static Coords<S> thetaddot(const Precomputed<S>& pre, const Coords<S>& sdot,
+                                           const Vector3<S>& alpha) {
+    return thetadot(pre, Vector3<S>(alpha - Gdot_thetadot(pre, sdot)));
+  }
+  template <class S>
   [[nodiscard]] static Coords<S> thetaddot(const Coords<S>& s, const Coords<S>& sdot,
                                            const Vector3<S>& alpha) {
-    return thetadot(s, Vector3<S>(alpha - Gdot_thetadot(s, sdot)));
+    return detail::with_precomputed<ModifiedRodriguesParameters>(
+        [](const auto& pre, const auto& sd, const auto& a) { return thetaddot(pre, sd, a); }, s,
+        sdot, alpha);
   }
 
   /// Through the quaternion of Shepperd's method (EulerParameters::from_rotation, e0 >= 0), so

@@ -51,40 +51,93 @@ struct RodriguesParameters {
   static constexpr std::string_view name = "RodriguesParameters";
   template <class S> using Coords = Vector3<S>;
 
-  /// R = I + 2 / (1 + g.g) (S(g) + S(g)^2)   (body -> inertial; Eq. 1.1).
+  /// What R, G, Gdot gdot share (concept.hpp): g, g.g and c = 2 / (1 + g.g).
+  template <class S> struct Precomputed {
+    Coords<S> g;
+    S gg, c;
+  };
+  template <class S> [[nodiscard]] static Precomputed<S> precompute(const Coords<S>& g) {
+    const S gg = g.squaredNorm();
+    const S c = S(2) / (S(1) + gg);
+    return {g, gg, c};
+  }
+
+  /// R = I + c (S(g) + S(g)^2) = (1 - c g.g) I + c g g^T + c S(g), c = 2 / (1 + g.g)
+  /// (body -> inertial; Eq. 1.1).
+  template <class S> [[nodiscard]] static Matrix3<S> rotation(const Precomputed<S>& pre) {
+    const S d = S(1) - pre.c * pre.gg;
+    const Vector3<S> cg = pre.c * pre.g;
+    Matrix3<S> r = cg * pre.g.transpose();
+    r.diagonal().array() += d;
+    r(0, 1) -= cg(2);
+    r(1, 0) += cg(2);
+    r(0, 2) += cg(1);
+    r(2, 0) -= cg(1);
+    r(1, 2) -= cg(0);
+    r(2, 1) += cg(0);
+    return r;
+  }
   template <class S> [[nodiscard]] static Matrix3<S> rotation(const Coords<S>& g) {
-    const S c = S(2) / (S(1) + g.squaredNorm());
-    const Matrix3<S> sg = skew(g);
-    return Matrix3<S>::Identity() + c * (sg + sg * sg);
+    return rotation(precompute(g));
   }
 
-  /// G = 2 / (1 + g.g) (I - S(g)), omega = G gdot in body components   (Eq. 1.5).
+  /// G = c (I - S(g)), omega = G gdot in body components   (Eq. 1.5).
+  template <class S> [[nodiscard]] static Matrix3<S> G(const Precomputed<S>& pre) {
+    return pre.c * (Matrix3<S>::Identity() - skew(pre.g));
+  }
   template <class S> [[nodiscard]] static Matrix3<S> G(const Coords<S>& g) {
-    const S c = S(2) / (S(1) + g.squaredNorm());
-    return c * (Matrix3<S>::Identity() - skew(g));
+    return G(precompute(g));
   }
 
-  /// Gdot gdot = -(2 g.gdot / (1 + g.g)) G gdot   (Eq. 1.10).
+  /// omega = G gdot = c (gdot - g x gdot)   (Eq. 1.5).
+  template <class S>
+  [[nodiscard]] static Vector3<S> omega(const Precomputed<S>& pre, const Coords<S>& gdot) {
+    const Vector3<S> u = gdot - pre.g.cross(gdot);
+    return pre.c * u;
+  }
+  template <class S>
+  [[nodiscard]] static Vector3<S> omega(const Coords<S>& g, const Coords<S>& gdot) {
+    return detail::with_precomputed<RodriguesParameters>(
+        [](const auto& pre, const auto& gd) { return omega(pre, gd); }, g, gdot);
+  }
+
+  /// Gdot gdot = -(2 g.gdot / (1 + g.g)) G gdot = -(c g.gdot) G gdot   (Eq. 1.10).
+  template <class S>
+  [[nodiscard]] static Vector3<S> Gdot_thetadot(const Precomputed<S>& pre, const Coords<S>& gdot) {
+    const S f = -pre.c * pre.g.dot(gdot);
+    return f * omega(pre, gdot);
+  }
   template <class S>
   [[nodiscard]] static Vector3<S> Gdot_thetadot(const Coords<S>& g, const Coords<S>& gdot) {
-    const S gg1 = S(1) + g.squaredNorm();
-    const S c = S(2) / gg1;
-    const Vector3<S> omega = c * (gdot - g.cross(gdot));
-    const S f = S(-2) * g.dot(gdot) / gg1;
-    return f * omega;
+    return detail::with_precomputed<RodriguesParameters>(
+        [](const auto& pre, const auto& gd) { return Gdot_thetadot(pre, gd); }, g, gdot);
   }
 
   /// gdot = 1/2 (I + S(g) + g g^T) omega = G^-1 omega.
   template <class S>
+  [[nodiscard]] static Coords<S> thetadot(const Precomputed<S>& pre, const Vector3<S>& omega) {
+    const Vector3<S>& g = pre.g;
+    const S gw = g.dot(omega);
+    return S(0.5) * (omega + g.cross(omega) + gw * g);
+  }
+  template <class S>
   [[nodiscard]] static Coords<S> thetadot(const Coords<S>& g, const Vector3<S>& omega) {
-    return S(0.5) * (omega + g.cross(omega) + g.dot(omega) * g);
+    return detail::with_precomputed<RodriguesParameters>(
+        [](const auto& pre, const auto& w) { return thetadot(pre, w); }, g, omega);
   }
 
   /// gddot = G^-1 (alpha - Gdot gdot)   (Eq. 1.10 solved for the parameter accelerations).
   template <class S>
+  [[nodiscard]] static Coords<S> thetaddot(const Precomputed<S>& pre, const Coords<S>& gdot,
+                                           const Vector3<S>& alpha) {
+    return thetadot(pre, Vector3<S>(alpha - Gdot_thetadot(pre, gdot)));
+  }
+  template <class S>
   [[nodiscard]] static Coords<S> thetaddot(const Coords<S>& g, const Coords<S>& gdot,
                                            const Vector3<S>& alpha) {
-    return thetadot(g, Vector3<S>(alpha - Gdot_thetadot(g, gdot)));
+    return detail::with_precomputed<RodriguesParameters>(
+        [](const auto& pre, const auto& gd, const auto& a) { return thetaddot(pre, gd, a); }, g,
+        gdot, alpha);
   }
 
   /// Through the quaternion of Shepperd's method (EulerParameters::from_rotation), which stays

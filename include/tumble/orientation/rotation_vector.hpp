@@ -24,18 +24,27 @@
 // by cancellation (measured in float, double and long double against mpmath: ~2.5 eps/x for b,
 // ~17 eps/x for d and c1, ~100 eps/x^2 for c2; sin phi / phi, a, cos(phi/2), sin(phi/2) / phi
 // do not cancel but are 0/0 at v = 0), and phi = sqrt(v.v) has an infinite derivative at the
-// origin, which makes AD derivatives NaN there. So each coefficient f has a Taylor branch: its
-// 14-term series in x (exact rational coefficients, derived with sympy, evaluated by
-// detail::horner; no sqrt) is used for x < x_f, with the threshold following from the scalar
-// type's epsilon:
-//     x_f = min(4, (eps |c_0 / c_13|)^(1/13))
+// origin, which makes AD derivatives NaN there. So below a threshold x_s every coefficient comes
+// from two series (exact rational coefficients, alternating, no sqrt),
+//     A2 = (1/2 - a) / x = sum_k (-x)^k / (2k+4)!,    B2 = (1/6 - b) / x = sum_k (-x)^k / (2k+5)!,
+// by algebra that does not cancel (class PhiFunctions):
+//     a = 1/2 - x A2,  b = 1/6 - x B2,  sin phi / phi = 1 - x b,  c1 = 2 A2 - b,  c2 = 3 B2 - A2,
+//     d = (a - 2 b) / (2 sin phi / phi) = (1/6 - x (A2 - 2 B2)) / (2 sin phi / phi),
+// (from 1 + cos phi = 2 - x a and phi sin phi = x (1 - x b)): one branch and two series per
+// attitude, shared by R, G, Gdot vdot and G^-1 (Precomputed). Each series keeps its terms up to
+// the first below eps |c_0| at x = 4 (double: 11 of each, float: 7 and 6, x86 long double: 13 and
+// 12) and is used for
+//     x < x_s = min(4, (eps |c_0 / c_{n-1}|)^(1/(n-1)))      (n terms kept),
 // where the last term kept is eps times the first, so the truncation error (the next term, a
-// further factor x / (28 * 29), or x / (4 pi^2) for d, smaller) is below eps. The cap x <= 4
-// (phi <= 2) is where the closed forms are accurate again (c2, the worst, to ~11 eps) and the
-// alternating series' rounding is still ~1 eps. This gives phi_f = 2 for every coefficient in
-// float, double and x86 long double except d (double: 1.60, long double: 1.19, where the closed
-// form of d is accurate to ~6 eps and ~12 eps). A long double with a longer mantissa (128-bit
-// quad) gets smaller thresholds and loses up to ~100 eps there, still far below double's eps.
+// further factor x / ((2n + 4)(2n + 5)) smaller) is below eps. The cap x <= 4 (phi <= 2) is where
+// the closed forms are accurate again (c2, the worst, to ~11 eps in double, ~13 eps in x86 long
+// double, where sin phi = 2 sin(phi/2) cos(phi/2) adds a rounding that phi - sin phi amplifies)
+// and the series' rounding is still ~1 eps; the derived coefficients add a few roundings
+// (measured on 400 points of [0, 4.5] against mpmath: at most 4.8 eps, c2 = 3 B2 - A2; d 2.9
+// eps; the others <= 2.5 eps). The series are summed by Estrin's scheme (depth log2(n), not
+// Horner's n - 1: their latency is most of the branch's). This gives phi_s = 2 in float, double
+// and x86 long double. A long double with a longer mantissa (128-bit quad) gets x_s = 0.34 and
+// loses up to ~1000 eps (~1e-31) in the closed forms above it, still far below double's eps.
 // from_quaternion() uses the series of atan(t)/t in t^2 = e.e / e0^2 by the same rule (there
 // atan2(|e|, e0) / |e| does not cancel; the branch only avoids sqrt(0) at the identity; its
 // threshold, t^2 = 0.08 in double, stays inside the radius of convergence t^2 < 1).
@@ -56,6 +65,7 @@
 //          ill-conditioned (v and -v are then nearly the same attitude).
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -78,96 +88,6 @@ namespace detail::rotation_vector {
 
 // Taylor coefficients in x = phi^2 (exact rationals: sympy series of each closed form; the
 // largest denominators exceed 2^64 and are written as long double literals, rounded once).
-// sin(phi) / phi
-inline constexpr long double kSinc[] = {1.0L,
-                                        -1.0L / 6.0L,
-                                        1.0L / 120.0L,
-                                        -1.0L / 5040.0L,
-                                        1.0L / 362880.0L,
-                                        -1.0L / 39916800.0L,
-                                        1.0L / 6227020800.0L,
-                                        -1.0L / 1307674368000.0L,
-                                        1.0L / 355687428096000.0L,
-                                        -1.0L / 121645100408832000.0L,
-                                        1.0L / 51090942171709440000.0L,
-                                        -1.0L / 25852016738884976640000.0L,
-                                        1.0L / 15511210043330985984000000.0L,
-                                        -1.0L / 10888869450418352160768000000.0L};
-// a = (1 - cos phi) / phi^2
-inline constexpr long double kA[] = {1.0L / 2.0L,
-                                     -1.0L / 24.0L,
-                                     1.0L / 720.0L,
-                                     -1.0L / 40320.0L,
-                                     1.0L / 3628800.0L,
-                                     -1.0L / 479001600.0L,
-                                     1.0L / 87178291200.0L,
-                                     -1.0L / 20922789888000.0L,
-                                     1.0L / 6402373705728000.0L,
-                                     -1.0L / 2432902008176640000.0L,
-                                     1.0L / 1124000727777607680000.0L,
-                                     -1.0L / 620448401733239439360000.0L,
-                                     1.0L / 403291461126605635584000000.0L,
-                                     -1.0L / 304888344611713860501504000000.0L};
-// b = (phi - sin phi) / phi^3
-inline constexpr long double kB[] = {1.0L / 6.0L,
-                                     -1.0L / 120.0L,
-                                     1.0L / 5040.0L,
-                                     -1.0L / 362880.0L,
-                                     1.0L / 39916800.0L,
-                                     -1.0L / 6227020800.0L,
-                                     1.0L / 1307674368000.0L,
-                                     -1.0L / 355687428096000.0L,
-                                     1.0L / 121645100408832000.0L,
-                                     -1.0L / 51090942171709440000.0L,
-                                     1.0L / 25852016738884976640000.0L,
-                                     -1.0L / 15511210043330985984000000.0L,
-                                     1.0L / 10888869450418352160768000000.0L,
-                                     -1.0L / 8841761993739701954543616000000.0L};
-// d = 1/phi^2 - (1 + cos phi) / (2 phi sin phi) (Bernoulli numbers; converges for x < 4 pi^2)
-inline constexpr long double kD[] = {1.0L / 12.0L,
-                                     1.0L / 720.0L,
-                                     1.0L / 30240.0L,
-                                     1.0L / 1209600.0L,
-                                     1.0L / 47900160.0L,
-                                     691.0L / 1307674368000.0L,
-                                     1.0L / 74724249600.0L,
-                                     3617.0L / 10670622842880000.0L,
-                                     43867.0L / 5109094217170944000.0L,
-                                     174611.0L / 802857662698291200000.0L,
-                                     77683.0L / 14101100039391805440000.0L,
-                                     236364091.0L / 1693824136731743669452800000.0L,
-                                     657931.0L / 186134520519971831808000000.0L,
-                                     3392780147.0L / 37893265687455865519472640000000.0L};
-// c1 = (phi sin phi - 2 (1 - cos phi)) / phi^4 = 2 da/dx
-inline constexpr long double kC1[] = {-1.0L / 12.0L,
-                                      1.0L / 180.0L,
-                                      -1.0L / 6720.0L,
-                                      1.0L / 453600.0L,
-                                      -1.0L / 47900160.0L,
-                                      1.0L / 7264857600.0L,
-                                      -1.0L / 1494484992000.0L,
-                                      1.0L / 400148356608000.0L,
-                                      -1.0L / 135161222676480000.0L,
-                                      1.0L / 56200036388880384000.0L,
-                                      -1.0L / 28202200078783610880000.0L,
-                                      1.0L / 16803810880275234816000000.0L,
-                                      -1.0L / 11726474792758225403904000000.0L,
-                                      1.0L / 9473316421863966379868160000000.0L};
-// c2 = ((1 - cos phi) phi - 3 (phi - sin phi)) / phi^5 = 2 db/dx
-inline constexpr long double kC2[] = {-1.0L / 60.0L,
-                                      1.0L / 1260.0L,
-                                      -1.0L / 60480.0L,
-                                      1.0L / 4989600.0L,
-                                      -1.0L / 622702080.0L,
-                                      1.0L / 108972864000.0L,
-                                      -1.0L / 25406244864000.0L,
-                                      1.0L / 7602818775552000.0L,
-                                      -1.0L / 2838385676206080000.0L,
-                                      1.0L / 1292600836944248832000.0L,
-                                      -1.0L / 705055001969590272000000.0L,
-                                      1.0L / 453702893767431340032000000.0L,
-                                      -1.0L / 340067768989988536713216000000.0L,
-                                      1.0L / 293672809077782957775912960000000.0L};
 // cos(phi/2)
 inline constexpr long double kHalfCos[] = {1.0L,
                                            -1.0L / 8.0L,
@@ -198,96 +118,199 @@ inline constexpr long double kHalfSinc[] = {1.0L / 2.0L,
                                             -1.0L / 216862434431944426122117120000.0L,
                                             1.0L / 520469842636666622693081088000000.0L,
                                             -1.0L / 1461479318123759876522171695104000000.0L};
+// A2 = (1/2 - a) / x = (cos phi - 1 + phi^2 / 2) / phi^4 (the series of a from its second term,
+// negated)
+inline constexpr long double kA2[] = {1.0L / 24.0L,
+                                      -1.0L / 720.0L,
+                                      1.0L / 40320.0L,
+                                      -1.0L / 3628800.0L,
+                                      1.0L / 479001600.0L,
+                                      -1.0L / 87178291200.0L,
+                                      1.0L / 20922789888000.0L,
+                                      -1.0L / 6402373705728000.0L,
+                                      1.0L / 2432902008176640000.0L,
+                                      -1.0L / 1124000727777607680000.0L,
+                                      1.0L / 620448401733239439360000.0L,
+                                      -1.0L / 403291461126605635584000000.0L,
+                                      1.0L / 304888344611713860501504000000.0L};
+// B2 = (1/6 - b) / x = (sin phi - phi + phi^3 / 6) / phi^5 (the series of b from its second term,
+// negated)
+inline constexpr long double kB2[] = {1.0L / 120.0L,
+                                      -1.0L / 5040.0L,
+                                      1.0L / 362880.0L,
+                                      -1.0L / 39916800.0L,
+                                      1.0L / 6227020800.0L,
+                                      -1.0L / 1307674368000.0L,
+                                      1.0L / 355687428096000.0L,
+                                      -1.0L / 121645100408832000.0L,
+                                      1.0L / 51090942171709440000.0L,
+                                      -1.0L / 25852016738884976640000.0L,
+                                      1.0L / 15511210043330985984000000.0L,
+                                      -1.0L / 10888869450418352160768000000.0L,
+                                      1.0L / 8841761993739701954543616000000.0L};
 // atan(t) / t in t^2 (radius of convergence t^2 < 1)
 inline constexpr long double kAtanc[] = {1.0L,         -1.0L / 3.0L,  1.0L / 5.0L,  -1.0L / 7.0L,
                                          1.0L / 9.0L,  -1.0L / 11.0L, 1.0L / 13.0L, -1.0L / 15.0L,
                                          1.0L / 17.0L, -1.0L / 19.0L, 1.0L / 21.0L, -1.0L / 23.0L,
                                          1.0L / 25.0L, -1.0L / 27.0L};
 
+inline constexpr long double kXMax = 4.0L;  // phi <= 2, see the file comment
+
+/// The number of terms of the series c kept for the value type V: all up to the first whose
+/// magnitude at x_max is below eps |c_0| (the later ones are smaller still on [0, x_max] and do
+/// not change the sum), at most all N.
+template <class V, std::size_t N>
+[[nodiscard]] constexpr std::size_t series_terms(const long double (&c)[N], long double x_max) {
+  const long double eps = static_cast<long double>(std::numeric_limits<V>::epsilon());
+  const long double c0 = c[0] < 0 ? -c[0] : c[0];
+  long double p = 1;  // x_max^k
+  for (std::size_t k = 0; k < N; ++k) {
+    const long double t = (c[k] < 0 ? -c[k] : c[k]) * p;
+    if (t <= eps * c0) {
+      return k + 1;
+    }
+    p *= x_max;
+  }
+  return N;
+}
+
 /// The upper end, in x, of the interval on which the series c is used: the x where the last term
-/// kept, c_{N-1} x^{N-1}, is eps |c_0| (see the file comment), capped at x_max.
+/// kept, c_{n-1} x^{n-1} (n = series_terms), is eps |c_0| (see the file comment), capped at x_max.
 template <class V, std::size_t N>
 [[nodiscard]] V series_limit(const long double (&c)[N], long double x_max) {
   using std::fabs;
   using std::pow;
+  const std::size_t n = series_terms<V>(c, x_max);
   const long double eps = static_cast<long double>(std::numeric_limits<V>::epsilon());
-  const long double x = pow(eps * fabs(c[0] / c[N - 1]), 1.0L / static_cast<long double>(N - 1));
+  const long double x = pow(eps * fabs(c[0] / c[n - 1]), 1.0L / static_cast<long double>(n - 1));
   return static_cast<V>(std::min(x, x_max));
 }
 
-/// The thresholds of every series for the value type V, computed once.
-template <class V> struct Limits { V sinc, a, b, d, c1, c2, half_cos, half_sinc, atanc; };
+/// sum_{k < n} c[off + k] x^k by Estrin's scheme, p = lo + x^m hi with m the largest power of two
+/// below n: log2(n) levels of multiply-adds whose chains run in parallel, where Horner's rule is
+/// one chain of n - 1 (the latency of a call's whole series branch). xp[j] = x^(2^j).
+template <const auto& c, std::size_t off, std::size_t n, class S>
+[[nodiscard]] S estrin(const S (&xp)[4]) {
+  using V = decltype(value(std::declval<S>()));
+  if constexpr (n == 1) {
+    return S(V(c[off]));
+  } else {
+    constexpr std::size_t m = std::bit_floor(n - 1);
+    static_assert(m <= 8, "estrin: xp holds x^(2^j) for j <= 3");
+    const S hi = estrin<c, off + m, n - m>(xp);
+    return estrin<c, off, m>(xp) + xp[std::countr_zero(m)] * hi;
+  }
+}
+
+/// The series c at x: its first series_terms terms for the value type of S (a count known at
+/// compile time), by Estrin's scheme.
+template <const auto& c, class S> [[nodiscard]] S series(const S& x) {
+  using V = decltype(value(std::declval<S>()));
+  constexpr std::size_t n = series_terms<V>(c, kXMax);
+  const S x2 = x * x;
+  const S x4 = x2 * x2;
+  const S xp[4] = {x, x2, x4, S(x4 * x4)};
+  return estrin<c, 0, n>(xp);
+}
+
+/// The thresholds for the value type V, computed once: `series` for the coefficient functions
+/// of the file comment (those of A2 and B2, from which they all follow), the others for their
+/// own series.
+template <class V> struct Limits { V series, half_cos, half_sinc, atanc; };
 
 template <class V> [[nodiscard]] const Limits<V>& limits() {
-  constexpr long double x_max = 4.0L;  // phi <= 2, see the file comment
-  static const Limits<V> l{series_limit<V>(kSinc, x_max),    series_limit<V>(kA, x_max),
-                           series_limit<V>(kB, x_max),       series_limit<V>(kD, x_max),
-                           series_limit<V>(kC1, x_max),      series_limit<V>(kC2, x_max),
+  constexpr long double x_max = kXMax;
+  static const Limits<V> l{std::min(series_limit<V>(kA2, x_max), series_limit<V>(kB2, x_max)),
                            series_limit<V>(kHalfCos, x_max), series_limit<V>(kHalfSinc, x_max),
                            series_limit<V>(kAtanc, x_max)};
   return l;
 }
 
-/// The coefficient functions of the file comment at x = phi^2 = v.v: each one is its Taylor
-/// series for x below its threshold (no sqrt, so AD derivatives stay finite at v = 0) and its
-/// closed form above. phi, sin phi, sin(phi/2) and cos(phi/2) are computed once, and only when a
-/// closed form needs them.
+/// The coefficient functions of the file comment at x = phi^2 = v.v. Below the threshold
+/// (x < limits().series) all follow from two series, A2 = (1/2 - a) / x and B2 = (1/6 - b) / x
+/// (no sqrt, so AD derivatives stay finite at v = 0), without cancellation:
+///     a = 1/2 - x A2,   b = 1/6 - x B2,   sin phi / phi = 1 - x b,
+///     c1 = 2 A2 - b,    c2 = 3 B2 - A2,   d = (1/6 - x (A2 - 2 B2)) / (2 sin phi / phi)
+/// (d = (a - 2 b) / (2 sin phi / phi), since 1 + cos phi = 2 - x a and phi sin phi = x (1 - x b)).
+/// Above it, their closed forms. phi, sin(phi/2) and cos(phi/2) (one sincos; sin phi is
+/// 2 sin(phi/2) cos(phi/2)), or A2 and B2, are computed once, and only when needed.
 template <class S> class PhiFunctions {
  public:
   using V = decltype(value(std::declval<S>()));
 
-  explicit PhiFunctions(const S& x) : x_(x), xv_(value(x)), lim_(limits<V>()) {}
+  explicit PhiFunctions(const S& x)
+      : x_(x), series_(value(x) < limits<V>().series), xv_(value(x)), lim_(limits<V>()) {}
+
+  /// True when the coefficient functions come from the series (x below the threshold).
+  [[nodiscard]] bool uses_series() const { return series_; }
 
   /// sin(phi) / phi
   S sinc() {
-    if (xv_ < lim_.sinc) return horner(kSinc, x_);
+    if (series_) return S(1) - x_ * b();
     trig();
     return s_ / phi_;
   }
   /// a = (1 - cos phi) / phi^2, as 2 sin^2(phi/2) / phi^2 (no cancellation).
   S a() {
-    if (xv_ < lim_.a) return horner(kA, x_);
+    if (series_) return S(0.5) - x_ * a2();
     trig();
     return S(2) * sh_ * sh_ / x_;
   }
   /// b = (phi - sin phi) / phi^3
   S b() {
-    if (xv_ < lim_.b) return horner(kB, x_);
+    if (series_) return S(V(1) / V(6)) - x_ * b2();
     trig();
     return (phi_ - s_) / (x_ * phi_);
   }
   /// d = 1/phi^2 - cos(phi/2) / (2 phi sin(phi/2)) (regular at phi = pi, singular at 2 pi).
   S d() {
-    if (xv_ < lim_.d) return horner(kD, x_);
+    if (series_) {
+      const S e = a2() - S(2) * b2();
+      return (S(V(1) / V(6)) - x_ * e) / (S(2) * sinc());
+    }
     trig();
-    return S(1) / x_ - ch_ / (S(2) * phi_ * sh_);
+    return (S(2) * sh_ - phi_ * ch_) / (S(2) * x_ * sh_);  // one division
   }
   /// c1 = (phi sin phi - 2 (1 - cos phi)) / phi^4
   S c1() {
-    if (xv_ < lim_.c1) return horner(kC1, x_);
+    if (series_) return S(2) * a2() - b();
     trig();
     return (phi_ * s_ - S(4) * sh_ * sh_) / (x_ * x_);
   }
   /// c2 = ((1 - cos phi) phi - 3 (phi - sin phi)) / phi^5
   S c2() {
-    if (xv_ < lim_.c2) return horner(kC2, x_);
+    if (series_) return S(3) * b2() - a2();
     trig();
     return (S(2) * sh_ * sh_ * phi_ - S(3) * (phi_ - s_)) / (x_ * x_ * phi_);
   }
   /// cos(phi/2)
   S half_cos() {
-    if (xv_ < lim_.half_cos) return horner(kHalfCos, x_);
+    if (xv_ < lim_.half_cos) return series<kHalfCos>(x_);
     trig();
     return ch_;
   }
   /// sin(phi/2) / phi
   S half_sinc() {
-    if (xv_ < lim_.half_sinc) return horner(kHalfSinc, x_);
+    if (xv_ < lim_.half_sinc) return series<kHalfSinc>(x_);
     trig();
     return sh_ / phi_;
   }
 
  private:
+  const S& a2() {
+    remainders();
+    return a2_;
+  }
+  const S& b2() {
+    remainders();
+    return b2_;
+  }
+  void remainders() {
+    if (have_remainders_) return;
+    a2_ = series<kA2>(x_);
+    b2_ = series<kB2>(x_);
+    have_remainders_ = true;
+  }
   void trig() {
     if (have_trig_) return;
     using std::cos;
@@ -295,16 +318,19 @@ template <class S> class PhiFunctions {
     using std::sqrt;
     phi_ = sqrt(x_);
     const S h = S(0.5) * phi_;
-    s_ = sin(phi_);
     sh_ = sin(h);
     ch_ = cos(h);
+    s_ = S(2) * sh_ * ch_;  // sin phi: no second call (sin and cos of h are one sincos)
     have_trig_ = true;
   }
 
   S x_;
+  bool series_;
   V xv_;
   const Limits<V>& lim_;
   bool have_trig_ = false;
+  bool have_remainders_ = false;
+  S a2_, b2_;
   S phi_, s_, sh_, ch_;
 };
 
@@ -316,44 +342,123 @@ struct RotationVector {
   static constexpr std::string_view name = "RotationVector";
   template <class S> using Coords = Vector3<S>;
 
-  /// R = exp(S(v)) = I + (sin phi / phi) S(v) + a S(v)^2   (body -> inertial; Eq. 1.1).
-  template <class S> [[nodiscard]] static Matrix3<S> rotation(const Coords<S>& v) {
-    detail::rotation_vector::PhiFunctions<S> f(v.squaredNorm());
-    const Matrix3<S> sk = skew(v);
-    return Matrix3<S>::Identity() + f.sinc() * sk + f.a() * (sk * sk);
+  /// What R, G, Gdot vdot and G^-1 share (concept.hpp): v, x = v.v and the coefficient
+  /// functions of the file comment, each evaluated once (one sqrt, sine and cosine at most).
+  template <class S> struct Precomputed {
+    Coords<S> v;
+    S x, sinc, a, b, c1, c2, d;
+  };
+  template <class S> [[nodiscard]] static Precomputed<S> precompute(const Coords<S>& v) {
+    Precomputed<S> p;
+    p.v = v;
+    p.x = v.squaredNorm();
+    detail::rotation_vector::PhiFunctions<S> f(p.x);
+    p.sinc = f.sinc();
+    p.a = f.a();
+    p.b = f.b();
+    p.c1 = f.c1();
+    p.c2 = f.c2();
+    p.d = f.d();
+    return p;
   }
 
-  /// G = I - a S(v) + b S(v)^2, omega = G vdot in body components   (Eq. 1.5).
+  /// R = exp(S(v)) = I + (sin phi / phi) S(v) + a S(v)^2 = (1 - a v.v) I + a v v^T +
+  /// (sin phi / phi) S(v)   (body -> inertial; Eq. 1.1).
+  template <class S> [[nodiscard]] static Matrix3<S> rotation(const Precomputed<S>& pre) {
+    const S diag = S(1) - pre.a * pre.x;
+    const Vector3<S> av = pre.a * pre.v;
+    const Vector3<S> sv = pre.sinc * pre.v;
+    Matrix3<S> r = av * pre.v.transpose();
+    r.diagonal().array() += diag;
+    r(0, 1) -= sv(2);
+    r(1, 0) += sv(2);
+    r(0, 2) += sv(1);
+    r(2, 0) -= sv(1);
+    r(1, 2) -= sv(0);
+    r(2, 1) += sv(0);
+    return r;
+  }
+  template <class S> [[nodiscard]] static Matrix3<S> rotation(const Coords<S>& v) {
+    return rotation(precompute(v));
+  }
+
+  /// G = I - a S(v) + b S(v)^2 = (1 - b v.v) I + b v v^T - a S(v), omega = G vdot in body
+  /// components   (Eq. 1.5).
+  template <class S> [[nodiscard]] static Matrix3<S> G(const Precomputed<S>& pre) {
+    const S diag = S(1) - pre.b * pre.x;
+    const Vector3<S> bv = pre.b * pre.v;
+    const Vector3<S> av = pre.a * pre.v;
+    Matrix3<S> g = bv * pre.v.transpose();
+    g.diagonal().array() += diag;
+    g(0, 1) += av(2);
+    g(1, 0) -= av(2);
+    g(0, 2) -= av(1);
+    g(2, 0) += av(1);
+    g(1, 2) += av(0);
+    g(2, 1) -= av(0);
+    return g;
+  }
   template <class S> [[nodiscard]] static Matrix3<S> G(const Coords<S>& v) {
-    detail::rotation_vector::PhiFunctions<S> f(v.squaredNorm());
-    const Matrix3<S> sk = skew(v);
-    return Matrix3<S>::Identity() - f.a() * sk + f.b() * (sk * sk);
+    return G(precompute(v));
+  }
+
+  /// omega = G vdot = vdot - a v x vdot + b v x (v x vdot)   (Eq. 1.5).
+  template <class S>
+  [[nodiscard]] static Vector3<S> omega(const Precomputed<S>& pre, const Coords<S>& vdot) {
+    const Vector3<S> u = pre.v.cross(vdot);
+    const Vector3<S> vu = pre.v.cross(u);
+    return vdot - pre.a * u + pre.b * vu;
+  }
+  template <class S>
+  [[nodiscard]] static Vector3<S> omega(const Coords<S>& v, const Coords<S>& vdot) {
+    return detail::with_precomputed<RotationVector>(
+        [](const auto& pre, const auto& vd) { return omega(pre, vd); }, v, vdot);
   }
 
   /// Gdot vdot = -adot v x vdot + bdot v x (v x vdot) + b vdot x (v x vdot), with
   /// adot = (v.vdot) c1 and bdot = (v.vdot) c2   (Eq. 1.10).
   template <class S>
+  [[nodiscard]] static Vector3<S> Gdot_thetadot(const Precomputed<S>& pre, const Coords<S>& vdot) {
+    const S vvd = pre.v.dot(vdot);
+    const S k1 = -vvd * pre.c1;
+    const S k2 = vvd * pre.c2;
+    const Vector3<S> u = pre.v.cross(vdot);
+    const Vector3<S> vu = pre.v.cross(u);
+    const Vector3<S> du = vdot.cross(u);
+    return k1 * u + k2 * vu + pre.b * du;
+  }
+  template <class S>
   [[nodiscard]] static Vector3<S> Gdot_thetadot(const Coords<S>& v, const Coords<S>& vdot) {
-    detail::rotation_vector::PhiFunctions<S> f(v.squaredNorm());
-    const S vvd = v.dot(vdot);
-    const Vector3<S> u = v.cross(vdot);
-    return (-vvd * f.c1()) * u + (vvd * f.c2()) * v.cross(u) + f.b() * vdot.cross(u);
+    return detail::with_precomputed<RotationVector>(
+        [](const auto& pre, const auto& vd) { return Gdot_thetadot(pre, vd); }, v, vdot);
   }
 
   /// vdot = G^-1 omega = omega + 1/2 v x omega + d v x (v x omega).
   /// \warning Not finite at phi = 2 pi k, k >= 1 (the singular attitudes of the chart).
   template <class S>
+  [[nodiscard]] static Coords<S> thetadot(const Precomputed<S>& pre, const Vector3<S>& omega) {
+    const Vector3<S> u = pre.v.cross(omega);
+    const Vector3<S> vu = pre.v.cross(u);
+    return omega + S(0.5) * u + pre.d * vu;
+  }
+  template <class S>
   [[nodiscard]] static Coords<S> thetadot(const Coords<S>& v, const Vector3<S>& omega) {
-    detail::rotation_vector::PhiFunctions<S> f(v.squaredNorm());
-    const Vector3<S> u = v.cross(omega);
-    return omega + S(0.5) * u + f.d() * v.cross(u);
+    return detail::with_precomputed<RotationVector>(
+        [](const auto& pre, const auto& w) { return thetadot(pre, w); }, v, omega);
   }
 
   /// vddot = G^-1 (alpha - Gdot vdot)   (Eq. 1.10 solved for the parameter accelerations).
   template <class S>
+  [[nodiscard]] static Coords<S> thetaddot(const Precomputed<S>& pre, const Coords<S>& vdot,
+                                           const Vector3<S>& alpha) {
+    return thetadot(pre, Vector3<S>(alpha - Gdot_thetadot(pre, vdot)));
+  }
+  template <class S>
   [[nodiscard]] static Coords<S> thetaddot(const Coords<S>& v, const Coords<S>& vdot,
                                            const Vector3<S>& alpha) {
-    return thetadot(v, Vector3<S>(alpha - Gdot_thetadot(v, vdot)));
+    return detail::with_precomputed<RotationVector>(
+        [](const auto& pre, const auto& vd, const auto& a) { return thetaddot(pre, vd, a); }, v,
+        vdot, alpha);
   }
 
   /// Through the quaternion of Shepperd's method (EulerParameters::from_rotation), so phi <= pi.

@@ -38,12 +38,19 @@ template <StateForm Form, class Body, class Q, class Qd, class S>
   }
   if constexpr (Form == StateForm::quasi_velocities) {
     k.omega = qd.template tail<3>();
+    if (with_rotation) {
+      k.rotation = P::rotation(th);
+    }
   } else {
+    // omega and R share the functions of theta (orientation/concept.hpp): evaluated once.
+    const typename P::template Precomputed<S> pre = P::precompute(th);
     const typename P::template Coords<S> thd = qd.template tail<Body::n_theta>();
-    k.omega = angular_velocity<P, S>(th, thd);
+    k.omega = P::omega(pre, thd);
+    if (with_rotation) {
+      k.rotation = P::rotation(pre);
+    }
   }
   if (with_rotation) {
-    k.rotation = P::rotation(th);
     if constexpr (Chart<P>::has_singularity) {  // Euler parameters never leave their chart
       k.rotation = (base.template cast<S>() * k.rotation).eval();
     }
