@@ -460,7 +460,7 @@ TEST_CASE("explicit integrator: a stiff scene is reported, naming BDF",
 /// unchecked, and checked together: rhs.hpp, FiniteCheck::by_caller).
 struct NanAfter {
   double t1 = 1.0;
-  static bool needs_rotation(tumble::ReferencePoint) { return false; }
+  static constexpr bool needs_rotation(tumble::ReferencePoint) { return false; }
   template <class S, class K> void apply(const S& t, const K& /*k*/, tumble::Wrench<S>& w) const {
     if (t > t1) {
       w.moment.x() += std::numeric_limits<double>::quiet_NaN();
