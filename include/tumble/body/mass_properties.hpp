@@ -55,9 +55,8 @@ template <class S = double> class MassProperties {
         inertia_inverse_(other.inertia_centroid_inverse().template cast<S>()),
         inertia_reference_inverse_(other.inertia_reference_inverse().template cast<S>()),
         principal_centroid_(diagonal(inertia_centroid_) && diagonal(inertia_inverse_)),
-        principal_reference_(diagonal(inertia_reference_) && diagonal(inertia_reference_inverse_)),
-        euler_centroid_(euler_coefficients(inertia_centroid_, inertia_inverse_)),
-        euler_reference_(euler_coefficients(inertia_reference_, inertia_reference_inverse_)) {}
+        principal_reference_(diagonal(inertia_reference_) && diagonal(inertia_reference_inverse_)) {
+  }
 
   [[nodiscard]] const S& mass() const { return mass_; }
   /// r_g: the centroid relative to the reference point, body components.
@@ -78,13 +77,11 @@ template <class S = double> class MassProperties {
   /// Euler's equations about the centroid: alpha = I_g^{-1} (m - omega x I_g omega) for the
   /// moment m about the centroid and omega (body components).
   [[nodiscard]] Vector3<S> euler_centroid(const Vector3<S>& m, const Vector3<S>& omega) const {
-    return euler(principal_centroid_, inertia_centroid_, inertia_inverse_, euler_centroid_, m,
-                 omega);
+    return euler(principal_centroid_, inertia_centroid_, inertia_inverse_, m, omega);
   }
   /// The same about the reference point: alpha = I_c^{-1} (m - omega x I_c omega), m about c.
   [[nodiscard]] Vector3<S> euler_reference(const Vector3<S>& m, const Vector3<S>& omega) const {
-    return euler(principal_reference_, inertia_reference_, inertia_reference_inverse_,
-                 euler_reference_, m, omega);
+    return euler(principal_reference_, inertia_reference_, inertia_reference_inverse_, m, omega);
   }
 
   /// Principal moments of I_g in ascending order.
@@ -112,8 +109,6 @@ template <class S = double> class MassProperties {
     inertia_reference_inverse_ = inertia_reference_.inverse();
     principal_centroid_ = diagonal(inertia_centroid_) && diagonal(inertia_inverse_);
     principal_reference_ = diagonal(inertia_reference_) && diagonal(inertia_reference_inverse_);
-    euler_centroid_ = euler_coefficients(inertia_centroid_, inertia_inverse_);
-    euler_reference_ = euler_coefficients(inertia_reference_, inertia_reference_inverse_);
     // A positive definite inertia can still be too small (or too badly scaled) for its inverse
     // to be representable, e.g. diag(1e-320, ...): reject it rather than return inf later.
     if (!detail::all_finite(inertia_inverse_) || !detail::all_finite(inertia_reference_) ||
@@ -124,30 +119,23 @@ template <class S = double> class MassProperties {
     }
   }
 
-  /// Euler's equations, alpha = i^{-1} (m - omega x i omega), for the inertia i, its inverse
-  /// i_inv and, when i is diagonal (`principal`: the body axes are principal axes), the
-  /// coefficients c = ((i_2 - i_3) / i_1, (i_3 - i_1) / i_2, (i_1 - i_2) / i_3): then
-  ///   alpha_1 = m_1 / i_1 + c_1 omega_2 omega_3  (and cyclically),
-  /// Euler's equations in principal axes, a third of the operations of the full products.
+  /// Euler's equations, alpha = i^{-1} (m - omega x i omega), for the inertia i and its inverse
+  /// i_inv. When both are diagonal (`principal`: the body axes are principal axes) the products
+  /// are written out per axis, a third of the operations of the full ones, with the same values
+  /// (the off-diagonal terms of the full products add exact zeros). Per component: as 3-vector
+  /// expressions GCC packs them in pairs with shuffles.
   [[gnu::always_inline]] static Vector3<S> euler(bool principal, const Matrix3<S>& i,
-                                                 const Matrix3<S>& i_inv, const Vector3<S>& c,
-                                                 const Vector3<S>& m, const Vector3<S>& omega) {
+                                                 const Matrix3<S>& i_inv, const Vector3<S>& m,
+                                                 const Vector3<S>& omega) {
     if (principal) {
-      // Written per component: as 3-vector expressions GCC packs them in pairs and shuffles
-      // (14 more instructions per call).
-      return Vector3<S>(i_inv(0, 0) * m(0) + c(0) * (omega(1) * omega(2)),
-                        i_inv(1, 1) * m(1) + c(1) * (omega(2) * omega(0)),
-                        i_inv(2, 2) * m(2) + c(2) * (omega(0) * omega(1)));
+      const S h0 = i(0, 0) * omega(0), h1 = i(1, 1) * omega(1), h2 = i(2, 2) * omega(2);
+      return Vector3<S>(i_inv(0, 0) * (m(0) - (omega(1) * h2 - omega(2) * h1)),
+                        i_inv(1, 1) * (m(1) - (omega(2) * h0 - omega(0) * h2)),
+                        i_inv(2, 2) * (m(2) - (omega(0) * h1 - omega(1) * h0)));
     }
     const Vector3<S> h = i * omega;
     const Vector3<S> mc = m - omega.cross(h);
     return i_inv.lazyProduct(mc);
-  }
-
-  /// The coefficients c of euler() for a diagonal inertia i with inverse i_inv.
-  static Vector3<S> euler_coefficients(const Matrix3<S>& i, const Matrix3<S>& i_inv) {
-    return Vector3<S>((i(1, 1) - i(2, 2)) * i_inv(0, 0), (i(2, 2) - i(0, 0)) * i_inv(1, 1),
-                      (i(0, 0) - i(1, 1)) * i_inv(2, 2));
   }
 
   static bool diagonal(const Matrix3<S>& m) {
@@ -225,8 +213,6 @@ template <class S = double> class MassProperties {
   Matrix3<S> inertia_reference_inverse_;
   bool principal_centroid_ = false;   ///< I_g and its inverse are diagonal
   bool principal_reference_ = false;  ///< I_c and its inverse are diagonal
-  Vector3<S> euler_centroid_;         ///< euler()'s c for I_g (used when principal_centroid_)
-  Vector3<S> euler_reference_;        ///< the same for I_c
 };
 
 }  // namespace tumble
