@@ -18,8 +18,12 @@
 // (no stabilization): an output normalizes it (rotation_of_unit), as simulators do; the drift of
 // |p| is reported.
 //
-// Every evaluation is counted (`evals`), so that methods whose integrator does not count its
-// right-hand sides (Boost.Odeint) report them as the SUNDIALS ones do.
+// operator() counts every evaluation (`evals`), as tumble's integrators count theirs, so that
+// methods whose integrator does not count its right-hand sides (Boost.Odeint) report them as
+// the SUNDIALS ones do; rates() is the closed form itself. Constant factors are computed once
+// (the Euler coefficients (I_2 - I_3) / I_1, ..., 1/m, 1/2 folded into omega): no division per
+// evaluation but the one by |p|^2 that the spring needs (three divisions per evaluation made
+// the Fehlberg 7(8) floor 1.2x slower, docs/benchmarks.md, 2026-11-26).
 
 #include <array>
 #include <cmath>
@@ -42,6 +46,9 @@ template <int N> struct FloorRhs {
   double gx = 0, gy = 0, gz = 0;  ///< gravity
   double k = 0, d = 0;            ///< the spring-damper at the reference point (13 states only)
   double cx = 0, cy = 0, cz = 0;  ///< the centroid's offset from the reference point, body
+  double c1 = 0, c2 = 0, c3 = 0;  ///< (i2 - i3) / i1, (i3 - i1) / i2, (i1 - i2) / i3
+  double j1 = 1, j2 = 1, j3 = 1;  ///< 1 / i1, 1 / i2, 1 / i3
+  double inv_mass = 1;
   mutable long evals = 0;
 
   explicit FloorRhs(const Problem& p)
@@ -56,16 +63,28 @@ template <int N> struct FloorRhs {
         d(p.damping),
         cx(p.centroid.x()),
         cy(p.centroid.y()),
-        cz(p.centroid.z()) {}
+        cz(p.centroid.z()),
+        c1((i2 - i3) / i1),
+        c2((i3 - i1) / i2),
+        c3((i1 - i2) / i3),
+        j1(1 / i1),
+        j2(1 / i2),
+        j3(1 / i3),
+        inv_mass(1 / mass) {}
 
   /// Whether the problem fits the 7-state form (torque-free and framed at its centroid).
   static bool fits(const Problem& p) {
     return N == 13 || (p.at_centroid && p.gravity.isZero() && p.stiffness == 0);
   }
 
-  /// xd = f(x).
+  /// xd = f(x), counted.
   void operator()(const double* x, double* xd) const {
     ++evals;
+    rates(x, xd);
+  }
+
+  /// xd = f(x).
+  void rates(const double* x, double* xd) const {
     const double e0 = x[p_at], e1 = x[p_at + 1], e2 = x[p_at + 2], e3 = x[p_at + 3];
     const double w1 = x[w_at], w2 = x[w_at + 1], w3 = x[w_at + 2];
     double m1 = 0, m2 = 0, m3 = 0;  // moment about the centroid, body
@@ -101,19 +120,27 @@ template <int N> struct FloorRhs {
       xd[0] = x[7];
       xd[1] = x[8];
       xd[2] = x[9];
-      xd[7] = gx + fx / mass;
-      xd[8] = gy + fy / mass;
-      xd[9] = gz + fz / mass;
+      xd[7] = gx + fx * inv_mass;
+      xd[8] = gy + fy * inv_mass;
+      xd[9] = gz + fz * inv_mass;
     }
     // pdot = 1/2 L(p)^T omega
-    xd[p_at] = 0.5 * (-e1 * w1 - e2 * w2 - e3 * w3);
-    xd[p_at + 1] = 0.5 * (e0 * w1 - e3 * w2 + e2 * w3);
-    xd[p_at + 2] = 0.5 * (e3 * w1 + e0 * w2 - e1 * w3);
-    xd[p_at + 3] = 0.5 * (-e2 * w1 + e1 * w2 + e0 * w3);
+    const double h1 = 0.5 * w1, h2 = 0.5 * w2, h3 = 0.5 * w3;
+    xd[p_at] = -e1 * h1 - e2 * h2 - e3 * h3;
+    xd[p_at + 1] = e0 * h1 - e3 * h2 + e2 * h3;
+    xd[p_at + 2] = e3 * h1 + e0 * h2 - e1 * h3;
+    xd[p_at + 3] = -e2 * h1 + e1 * h2 + e0 * h3;
     // Euler's equations, principal axes
-    xd[w_at] = (m1 + (i2 - i3) * w2 * w3) / i1;
-    xd[w_at + 1] = (m2 + (i3 - i1) * w3 * w1) / i2;
-    xd[w_at + 2] = (m3 + (i1 - i2) * w1 * w2) / i3;
+    if constexpr (N == 13) {
+      xd[w_at] = m1 * j1 + c1 * w2 * w3;
+      xd[w_at + 1] = m2 * j2 + c2 * w3 * w1;
+      xd[w_at + 2] = m3 * j3 + c3 * w1 * w2;
+    } else {  // torque-free
+      (void)m1, (void)m2, (void)m3;
+      xd[w_at] = c1 * w2 * w3;
+      xd[w_at + 1] = c2 * w3 * w1;
+      xd[w_at + 2] = c3 * w1 * w2;
+    }
   }
 
   /// The initial state of problem `p`.

@@ -459,6 +459,39 @@ TEST_CASE("explicit integrator: a stiff scene is reported, naming BDF",
   }
 }
 
+/// A moment that turns NaN after t1, without throwing (the stages of a step are evaluated
+/// unchecked, and checked together: rhs.hpp, FiniteCheck::by_caller).
+struct NanAfter {
+  double t1 = 1.0;
+  static constexpr bool needs_rotation(tumble::ReferencePoint) { return false; }
+  template <class S, class K> void apply(const S& t, const K& /*k*/, tumble::Wrench<S>& w) const {
+    if (t > t1) {
+      w.moment.x() += std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+};
+
+TEST_CASE("explicit integrator: a non-finite stage rejects the step, never a NaN state",
+          "[integrate][explicit_integrator]") {
+  using Body = RigidBody<tumble::EulerParameters>;
+  using SceneT = Scene<Bodies<Body>, Loads<NanAfter>>;
+  SceneT scene;
+  const auto b = scene.add(Body(tumble::test::tumbling_mass()), {.rotation = kR0, .omega = kOmega});
+  scene.add_load(b, NanAfter{1.0});
+  for (const OdeintMethod method : {OdeintMethod::fehlberg78, OdeintMethod::dopri5}) {
+    INFO(name(method));
+    OdeintIntegrator<SceneT, 13> integrator(scene, 0.0, options(method, 1e-10));
+    integrator.advance(0.9);
+    const long rejected = integrator.statistics().rejected_steps;
+    CHECK_THROWS_AS(integrator.advance(2.0), tumble::ExplicitIntegrationError);
+    // Every step that reached past t1 was rejected: the integrator stops at t1, finite.
+    CHECK(integrator.time() <= 1.0);
+    CHECK(integrator.time() > 1.0 - 1e-9);
+    CHECK(integrator.state().y.allFinite());
+    CHECK(integrator.statistics().rejected_steps > rejected);
+  }
+}
+
 // After the first steps (which size nothing: every buffer is sized at construction), advancing
 // allocates nothing with a fixed-size state, across chart switches and events.
 TEST_CASE("explicit integrator: no heap allocation per step", "[integrate][explicit_integrator]") {

@@ -479,17 +479,13 @@ class RigidBody {
     // centroid, where r_g = 0 removes the coupling terms.
     if constexpr (at_centroid) {
       (void)rotation_fn;
-      const Vector3<S> h = mp_.inertia_centroid() * om;  // angular momentum about g, body
-      const Vector3<S> mg = w.moment - om.cross(h);
-      vr.alpha = mp_.inertia_centroid_inverse().lazyProduct(mg);
+      vr.alpha = mp_.euler_centroid(w.moment, om);  // I_g^-1 (M_g - omega x I_g omega)
       vr.acceleration = w.force / mp_.mass();
     } else if constexpr (fixed) {
       // The theta-rows of Eq. (1.32) with rddot_oc = 0: I_c alpha = M_c - omega x I_c omega,
       // moments about the fixed point c; the force at c (reaction included) does not enter.
       (void)rotation_fn;
-      const Vector3<S> hc = mp_.inertia_reference() * om;
-      const Vector3<S> mc = w.moment - om.cross(hc);
-      vr.alpha = mp_.inertia_reference_inverse().lazyProduct(mc);
+      vr.alpha = mp_.euler_reference(w.moment, om);
       vr.acceleration.setZero();
     } else {
       const Matrix3<S> r = rotation_fn();

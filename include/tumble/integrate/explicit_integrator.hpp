@@ -271,10 +271,12 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     long rejected = 0;  ///< of which failed Odeint's error test
   };
 
-  /// What Odeint calls: x' = f(t, x), counted.
+  /// What Odeint calls for the stages of a step: x' = f(t, x), counted, unchecked (see stage()).
   struct System {
     OdeintIntegrator* self;
-    void operator()(const State& x, State& dxdt, double t) const { self->evaluate(x, dxdt, t); }
+    [[gnu::always_inline]] void operator()(const State& x, State& dxdt, double t) const {
+      self->stage(x, dxdt, t);
+    }
   };
 
   [[nodiscard]] Eigen::Index size() const { return scene_->size(); }
@@ -335,9 +337,21 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     }
   }
 
+  /// x' at x; throws NonFiniteError when it is not finite.
   void evaluate(const State& x, State& dxdt, double t) {
     ++stats_.rhs_evals;
     tumble::rhs(*scene_, ws_, t, map(x), bases(), map(dxdt));
+  }
+
+  /// x' at a stage of a trial step, not checked one by one: a non-finite entry sets
+  /// stage_not_finite_, and step_with rejects the step (as if the evaluation had thrown).
+  [[gnu::flatten]] void stage(const State& x, State& dxdt, double t) {
+    ++stats_.rhs_evals;
+    tumble::rhs<FiniteCheck::by_caller>(*scene_, ws_, t, map(x), bases(), map(dxdt));
+    // finite * 0 = 0, inf * 0 and NaN * 0 are NaN: the sum is 0 exactly when all are finite.
+    if (!((map(dxdt).array() * 0.0).sum() == 0.0)) [[unlikely]] {
+      stage_not_finite_ = true;
+    }
   }
 
   /// Projects the quaternions and re-centers the charts of x_ (in their switch zone); true if
@@ -441,11 +455,19 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       bool ok = false;
       try {
         if (!deriv_valid_) {
-          evaluate(x_, dxdt_, t_);
+          stage_not_finite_ = false;
+          stage(x_, dxdt_, t_);
+          if (stage_not_finite_) {
+            evaluate(x_, dxdt_, t_);  // throws NonFiniteError, naming the body and the cause
+          }
           deriv_valid_ = true;
         }
+        stage_not_finite_ = false;
         ok = stepper.try_step(sys, x_, dxdt_, t, x_new_, dxdt_new_, h);
-        if (!ok) {
+        if (stage_not_finite_) {  // as when an evaluation throws NonFiniteError, below
+          ok = false;
+          h = 0.25 * h_try;
+        } else if (!ok) {
           ++run_.rejected;
           ++window_.rejected;
         } else if (const double f = acceptable(x_new_); f < 1.0) {
@@ -652,9 +674,10 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   SceneWorkspace<SceneT> ws_;
   Stepper stepper_;
   State x_{}, dxdt_{}, x_old_{}, dxdt_old_{}, x_new_{}, dxdt_new_{}, x_tmp_{};
-  bool deriv_valid_ = false;             ///< dxdt_ is x' at x_
-  Run run_;                              ///< this advance (or output interval): the step budget
-  Run window_;                           ///< the attempts since the last stiffness test
+  bool deriv_valid_ = false;       ///< dxdt_ is x' at x_
+  bool stage_not_finite_ = false;  ///< some stage of the current trial step was not finite
+  Run run_;     ///< this advance (or output interval): the step budget
+  Run window_;  ///< the attempts since the last stiffness test
   double t_ = 0.0, h_ = 0.0;             ///< time, next step size
   Vec corr_;                             ///< the projection's correction
   Eigen::VectorXd g_, g0_;               ///< chart roots at a step's end and start

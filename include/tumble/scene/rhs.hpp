@@ -9,7 +9,9 @@
 //   concrete types: the kinematics of every body (R only where a
 // load or the offset frame needs it, composed with the body's chart base R0 from the state), the
 // loads (one-body loads with the body's typed kinematics, couplings with both), then the
-// accelerations. Nothing is allocated: the scratch lives in the workspace.
+// accelerations. Nothing is allocated: the scratch lives in the workspace. A scene without load
+// types (Loads<>) skips the first two passes: each body's rates come from its own block with a
+// zero wrench, and nothing is written to the workspace. FiniteCheck says who checks the result.
 
 #include <cstddef>
 #include <span>
@@ -23,6 +25,12 @@
 #include "tumble/scene/workspace.hpp"
 
 namespace tumble {
+
+/// Who checks the right-hand side for finiteness: rhs() itself, throwing NonFiniteError from the
+/// body whose rates are not finite (what CVODE needs: it retries a step after such a failure),
+/// or the caller, which then gets the values, non-finite ones included, and no exception
+/// (OdeintIntegrator checks all the stages of a step at once, and rejects the step).
+enum class FiniteCheck { each_call, by_caller };
 
 namespace detail {
 
@@ -59,31 +67,56 @@ void scene_loads([[maybe_unused]] const SceneT& scene, [[maybe_unused]] SceneWor
   (scene_loads_of_type<std::tuple_element_t<I, typename SceneT::LoadTypes>>(scene, ws, t), ...);
 }
 
+/// Pass 3 for one body: the rate of its block of y for its kinematics k and wrench w (checked for
+/// finiteness when Checked).
+template <bool Checked, class E, class Y, class K, class Ydot>
+[[gnu::always_inline]] inline void entry_rates(const E& e, const Y& y, const K& k,
+                                               const Wrench<double>& w, bool stabilize,
+                                               Ydot& ydot) {
+  using Body = std::remove_cvref_t<decltype(e.body)>;
+  constexpr int nq = Body::nq;
+  const typename Body::Coords q = y.template segment<nq>(e.offset);
+  if constexpr (E::quasi) {
+    ydot.template segment<Body::nx>(e.offset) =
+        body_quasi_rates<Checked>(e.body, q, k, w, stabilize);
+  } else {
+    const typename Body::Coords qd = y.template segment<nq>(e.rates);
+    ydot.template segment<nq>(e.offset) = qd;
+    ydot.template segment<nq>(e.rates) =
+        body_accelerations<Checked>(e.body, q, qd, k, w, stabilize);
+  }
+}
+
 }  // namespace detail
 
 /// y' = f(t, y) for the state (y, base) into ydot (any Eigen vectors of size scene.size(), e.g.
 /// maps of an integrator's memory). Throws NonFiniteError on a non-finite result (which CVODE
 /// treats as recoverable: it retries with a smaller step).
-template <class SceneT, class Y, class Ydot>
+template <FiniteCheck Check = FiniteCheck::each_call, class SceneT, class Y, class Ydot>
 void rhs(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y& y,
          std::span<const Matrix3<double>> base, Ydot&& ydot) {
-  detail::scene_kinematics(scene, ws, y, base);
-  detail::scene_loads(scene, ws, t,
-                      std::make_index_sequence<std::tuple_size_v<typename SceneT::LoadTypes>>{});
-  scene.for_each_entry([&](const auto& e) {
-    using Body = std::remove_cvref_t<decltype(e.body)>;
-    constexpr int nq = Body::nq;
-    const typename Body::Coords q = y.template segment<nq>(e.offset);
-    if constexpr (std::remove_cvref_t<decltype(e)>::quasi) {
-      ydot.template segment<Body::nx>(e.offset) = detail::body_quasi_rates(
-          e.body, q, ws.kinematics(e), ws.wrench(e.id), ws.stabilize_constraints);
-    } else {
-      const typename Body::Coords qd = y.template segment<nq>(e.rates);
-      ydot.template segment<nq>(e.offset) = qd;
-      ydot.template segment<nq>(e.rates) = detail::body_accelerations(
-          e.body, q, qd, ws.kinematics(e), ws.wrench(e.id), ws.stabilize_constraints);
-    }
-  });
+  constexpr bool checked = Check == FiniteCheck::each_call;
+  if constexpr (std::tuple_size_v<typename SceneT::LoadTypes> == 0) {
+    // No loads: each body's rates from its own block, with a zero wrench; nothing is written to
+    // the workspace (no load reads it).
+    scene.for_each_entry([&](const auto& e) {
+      using E = std::remove_cvref_t<decltype(e)>;
+      using Body = std::remove_cvref_t<decltype(e.body)>;
+      typename Body::Kinematics k;
+      detail::body_kinematics<E::form>(e.body, y.template segment<Body::nq>(e.offset),
+                                       y.template segment<E::rate_size>(e.rates), base[e.id],
+                                       Body::reference == ReferencePoint::offset, k);
+      detail::entry_rates<checked>(e, y, k, Wrench<double>{}, ws.stabilize_constraints, ydot);
+    });
+  } else {
+    detail::scene_kinematics(scene, ws, y, base);
+    detail::scene_loads(scene, ws, t,
+                        std::make_index_sequence<std::tuple_size_v<typename SceneT::LoadTypes>>{});
+    scene.for_each_entry([&](const auto& e) {
+      detail::entry_rates<checked>(e, y, ws.kinematics(e), ws.wrench(e.id),
+                                   ws.stabilize_constraints, ydot);
+    });
+  }
 }
 
 /// The same for an owned state.

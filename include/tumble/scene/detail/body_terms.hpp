@@ -62,13 +62,28 @@ template <StateForm Form, class Body, class Q, class Qd, class S>
 ///   p.pddot = -|pdot|^2 - 2 g (p.pdot) - g^2 (|p|^2 - 1)/2,  g = |omega|,
 /// so that a drift of |p| = 1 decays on the body's own time scale without adding stiffness (used
 /// with Adams, which cannot project; BDF projects instead).
-template <class JBody>
+/// Checked: RigidBody::accelerations, which throws NonFiniteError on a non-finite result; else
+/// the same qddot from its public pieces (velocity_rates, P::thetaddot of Eq. 1.10) unchecked,
+/// for a caller that checks the results itself (rhs.hpp, FiniteCheck::by_caller).
+template <bool Checked = true, class JBody>
 [[gnu::always_inline]] inline Vector<typename JBody::Scalar, JBody::nq> body_accelerations(
     const JBody& body, const typename JBody::Coords& q, const typename JBody::Coords& qd,
     const typename JBody::Kinematics& k, const Wrench<typename JBody::Scalar>& w,
     [[maybe_unused]] bool stabilize) {
   using S = typename JBody::Scalar;
-  typename JBody::Coords qdd = body.accelerations(q, qd, k, w);
+  typename JBody::Coords qdd;
+  if constexpr (Checked) {
+    qdd = body.accelerations(q, qd, k, w);
+  } else {
+    using Theta = typename JBody::Theta;
+    const Theta th = q.template tail<JBody::n_theta>();
+    const VelocityRates<S> vr = body.velocity_rates(th, k, w);
+    if constexpr (!JBody::fixed) {
+      qdd.template head<3>() = vr.acceleration;
+    }
+    qdd.template tail<JBody::n_theta>() =
+        JBody::Param::thetaddot(th, Theta(qd.template tail<JBody::n_theta>()), vr.alpha);
+  }
   if constexpr (JBody::Param::has_constraint) {
     if (stabilize) {
       // The body imposed p.pddot = -|pdot|^2 assuming |p| = 1; add the difference along p.
@@ -106,12 +121,27 @@ template <class JBody>
 /// With BDF the integrator projects instead (projection.hpp), and stabilize is false.
 /// Forced inline, as body_kinematics: GCC 12 called it out of line from the right-hand side, where
 /// it took a fifth of an explicit run's time (perf, Odeint Fehlberg 7(8) on one body).
-template <class JBody>
+/// Checked: RigidBody::quasi_rates, which throws NonFiniteError on a non-finite result; else the
+/// same rate from its public pieces (velocity_rates, P::thetadot) unchecked, as for
+/// body_accelerations.
+template <bool Checked = true, class JBody>
 [[gnu::always_inline]] inline Vector<typename JBody::Scalar, JBody::nx> body_quasi_rates(
     const JBody& body, const typename JBody::Coords& q, const typename JBody::Kinematics& k,
     const Wrench<typename JBody::Scalar>& w, [[maybe_unused]] bool stabilize) {
   using S = typename JBody::Scalar;
-  typename JBody::QuasiCoords xd = body.quasi_rates(q, k, w);
+  typename JBody::QuasiCoords xd;
+  if constexpr (Checked) {
+    xd = body.quasi_rates(q, k, w);
+  } else {
+    const typename JBody::Theta th = q.template tail<JBody::n_theta>();
+    const VelocityRates<S> vr = body.velocity_rates(th, k, w);
+    xd.template segment<JBody::n_theta>(JBody::n_r) = JBody::Param::thetadot(th, k.omega);
+    xd.template tail<3>() = vr.alpha;
+    if constexpr (!JBody::fixed) {
+      xd.template head<3>() = k.velocity;
+      xd.template segment<3>(JBody::nq) = vr.acceleration;
+    }
+  }
   if constexpr (JBody::Param::has_constraint) {
     if (stabilize) {
       using std::sqrt;
