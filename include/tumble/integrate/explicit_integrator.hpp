@@ -674,10 +674,10 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   SceneWorkspace<SceneT> ws_;
   Stepper stepper_;
   State x_{}, dxdt_{}, x_old_{}, dxdt_old_{}, x_new_{}, dxdt_new_{}, x_tmp_{};
-  bool deriv_valid_ = false;       ///< dxdt_ is x' at x_
-  bool stage_not_finite_ = false;  ///< some stage of the current trial step was not finite
-  Run run_;     ///< this advance (or output interval): the step budget
-  Run window_;  ///< the attempts since the last stiffness test
+  bool deriv_valid_ = false;             ///< dxdt_ is x' at x_
+  bool stage_not_finite_ = false;        ///< some stage of the current trial step was not finite
+  Run run_;                              ///< this advance (or output interval): the step budget
+  Run window_;                           ///< the attempts since the last stiffness test
   double t_ = 0.0, h_ = 0.0;             ///< time, next step size
   Vec corr_;                             ///< the projection's correction
   Eigen::VectorXd g_, g0_;               ///< chart roots at a step's end and start

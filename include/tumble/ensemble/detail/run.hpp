@@ -27,9 +27,9 @@ struct IgnoreOutput {
 
 /// What an ensemble needs of an integrator: integrate(times, observer), calling observer(t,
 /// const SceneState&) at each output time, and reset(t, s) to restart from another state.
-/// SceneIntegrator (CVODE), OdeintIntegrator (Boost.Odeint) and AutoIntegrator model it. A run is its
-/// integrator's integrate(), so that it computes what a serial integrate() computes, to the bit,
-/// with every option of the integrator (Dormand-Prince's interpolated outputs among them).
+/// SceneIntegrator (CVODE), OdeintIntegrator (Boost.Odeint) and AutoIntegrator model it. A run is
+/// its integrator's integrate(), so that it computes what a serial integrate() computes, to the
+/// bit, with every option of the integrator (Dormand-Prince's interpolated outputs among them).
 template <class I>
 concept EnsembleIntegrator = requires(I& integrator, double t, const SceneState& s,
                                       const std::vector<double>& times) {

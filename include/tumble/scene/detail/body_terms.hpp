@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "tumble/body/kinematics.hpp"
+#include "tumble/body/rigid_body.hpp"
 #include "tumble/body/wrench.hpp"
 #include "tumble/core/math.hpp"
 #include "tumble/core/types.hpp"
