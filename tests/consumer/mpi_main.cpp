@@ -28,6 +28,13 @@ class DecayIntegrator {
   }
   void advance(double t) { state_.y[0] = y0_ * std::exp(-k_ * (t - t0_)); }
   const tumble::SceneState& state() const { return state_; }
+  /// observer(t, state) at each output time (what an Ensemble's run calls).
+  template <class Times, class Observer> void integrate(const Times& times, Observer&& observer) {
+    for (const double t : times) {
+      advance(t);
+      observer(t, state_);
+    }
+  }
   void reset(double t0, const tumble::SceneState& s0) {
     if (s0.y[0] < 0.0) {
       throw std::invalid_argument("negative initial state");
