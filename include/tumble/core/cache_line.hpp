@@ -38,8 +38,10 @@ template <class T> struct CacheLineAllocator {
     }
     return static_cast<T*>(::operator new (padded(n), std::align_val_t{kCacheLine}));
   }
-  void deallocate(T* p, std::size_t n) noexcept {
-    ::operator delete (p, padded(n), std::align_val_t{kCacheLine});
+  /// The unsized aligned delete: the sized one needs -fsized-deallocation, off by default in
+  /// Clang 14.
+  void deallocate(T* p, std::size_t /*n*/) noexcept {
+    ::operator delete (p, std::align_val_t{kCacheLine});
   }
 
   /// n T's in bytes, rounded up to whole kCacheLine blocks.
