@@ -376,7 +376,7 @@ struct EnsemblePlan {
   std::size_t runs = 2000;  ///< runs per timed ensemble: threads, serial loops, MPI ranks
   int reps = 3;             ///< timed repetitions of each, the median is reported
   /// Calls in a row of each Ensemble::integrate row, each timed and shown: a slow call cannot
-  /// hide behind the median (issue 20: some calls of ten were 3-4x slower).
+  /// hide behind the median (some calls of ten were once 3-4x slower: docs/benchmarks.md).
   int calls = 10;
   /// The large ensemble timed once on 2 threads (Ensemble::fold); its tenth is the smaller fold
   /// of the memory measurement.

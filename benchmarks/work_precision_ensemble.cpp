@@ -246,7 +246,7 @@ struct Study {
   }
 
   /// The process's first parallel call, before any timed row: oneTBB starts its worker threads
-  /// in it; timed apart, so that no row's first call carries it (docs/benchmarks.md, issue 20).
+  /// in it; timed apart, so that no row's first call carries it (docs/benchmarks.md).
   void start_threads() {
     const Ensemble e(t.scene, make, {.threads = 2});
     const auto start = [this](std::size_t i) { return initial(i); };

@@ -295,13 +295,19 @@ template <class SceneT, int N = Eigen::Dynamic> class AutoIntegrator {
     to.events += s.events - base.events;
   }
 
-  [[nodiscard]] OdeintOptions odeint_options(AutoMethod m) const {
-    OdeintOptions o;
+  /// The integrator's options with the shared ones (integrate/common.hpp) of options_.
+  template <class O> [[nodiscard]] O shared_options() const {
+    O o;
     o.rtol = options_.rtol;
     o.atol = options_.atol;
     o.max_steps = options_.max_steps;
     o.initial_step = options_.initial_step;
     o.max_step = options_.max_step;
+    return o;
+  }
+
+  [[nodiscard]] OdeintOptions odeint_options(AutoMethod m) const {
+    auto o = shared_options<OdeintOptions>();
     o.method = m == AutoMethod::dopri5 ? OdeintMethod::dopri5 : OdeintMethod::fehlberg78;
     o.stiffness_window = options_.stiffness_window;
     o.interpolate_outputs = true;
@@ -309,12 +315,7 @@ template <class SceneT, int N = Eigen::Dynamic> class AutoIntegrator {
   }
 
   [[nodiscard]] SceneIntegratorOptions bdf_options() const {
-    SceneIntegratorOptions o;
-    o.rtol = options_.rtol;
-    o.atol = options_.atol;
-    o.max_steps = options_.max_steps;
-    o.initial_step = options_.initial_step;
-    o.max_step = options_.max_step;
+    auto o = shared_options<SceneIntegratorOptions>();
     o.method = CvodeMethod::bdf;
     if (scene_->size() > kDenseLimit) {
       o.cvode.linear_solver = CvodeLinearSolver::band;  // the scene's own half-bandwidth
@@ -371,16 +372,14 @@ template <class SceneT, int N = Eigen::Dynamic> class AutoIntegrator {
     choices_.push_back({m, t, std::move(why)});
   }
 
-  /// The explicit path found the scene stiff: BDF from its last accepted step.
+  /// The explicit path found the scene stiff: BDF from its last accepted step. Without a
+  /// stiffness window the user asked for no hand-over: the error (from a spent step budget) goes
+  /// on to the caller.
   void to_bdf(const StiffSceneError& e) {
     if (options_.stiffness_window == 0) {
-      throw;  // unreachable: no window, no test; kept for clarity
+      throw;  // called from the handler of e
     }
-    add(finished_, explicit_->statistics(), explicit_base_);
-    const double t = explicit_->time();
-    const SceneState s = explicit_->save();
-    explicit_.reset();
-    begin(AutoMethod::bdf, t, s, std::string("stiff on the way: ") + e.what());
+    hand_over(AutoMethod::bdf, std::string("stiff on the way: ") + e.what());
   }
 
   /// Fehlberg 7(8)'s steps are cut by the outputs: Dormand-Prince from here (point 2).
@@ -390,11 +389,16 @@ template <class SceneT, int N = Eigen::Dynamic> class AutoIntegrator {
                   "the outputs (every %.3g) cut the steps of Fehlberg 7(8), whose controller "
                   "asks for %.3g: Dormand-Prince reads them off its dense output",
                   spacing, explicit_->step_size());
+    hand_over(AutoMethod::dopri5, buf);
+  }
+
+  /// The explicit integrator's counters kept, then method m from its current state.
+  void hand_over(AutoMethod m, std::string why) {
     add(finished_, explicit_->statistics(), explicit_base_);
     const double t = explicit_->time();
     const SceneState s = explicit_->save();
     explicit_.reset();
-    begin(AutoMethod::dopri5, t, s, buf);
+    begin(m, t, s, std::move(why));
   }
 
   /// Point 1: h rho at (t, s) against kStiffAtStart; false (and h_rho = 0) when the scene cannot
