@@ -74,12 +74,14 @@ template <class S = double> class MassProperties {
   [[nodiscard]] const Matrix3<S>& inertia_reference_inverse() const {
     return inertia_reference_inverse_;
   }
-  /// Euler's equations about the centroid: alpha = I_g^{-1} (m - omega x I_g omega) for the
-  /// moment m about the centroid and omega (body components).
+  /// Euler's equations about the centroid, the theta-rows of Eq. (1.33) in Newton-Euler form:
+  /// alpha = I_g^{-1} (m - omega x I_g omega) for the moment m about the centroid and omega (body
+  /// components).
   [[nodiscard]] Vector3<S> euler_centroid(const Vector3<S>& m, const Vector3<S>& omega) const {
     return euler(principal_centroid_, inertia_centroid_, inertia_inverse_, m, omega);
   }
-  /// The same about the reference point: alpha = I_c^{-1} (m - omega x I_c omega), m about c.
+  /// The same about the reference point (the theta-rows of Eq. (1.32) with rddot_oc = 0):
+  /// alpha = I_c^{-1} (m - omega x I_c omega), m about c.
   [[nodiscard]] Vector3<S> euler_reference(const Vector3<S>& m, const Vector3<S>& omega) const {
     return euler(principal_reference_, inertia_reference_, inertia_reference_inverse_, m, omega);
   }
