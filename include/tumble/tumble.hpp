@@ -7,10 +7,14 @@
 //   body/          MassProperties, RigidBody<P, ReferencePoint, Scalar>, Wrench, kinematics
 //   force/         UniformGravity, PointForce, BodyMoment, SpringDamper, SpringDamperBetween,
 //                  UserForce, UserCoupling; total_wrench, generalized_force, accelerations
+//   joint/         Spherical, Revolute, Universal, Cylindrical, Prismatic, Weld, Distance,
+//                  UserJoint<M>; the JointElement concept and the primitives they are built of
 //   scene/         Scene<Bodies<...>, Loads<...>> (the model), SceneState (y and chart bases),
 //                  SceneWorkspace; rhs, jacobian (Jet<N> automatic differentiation; dense or
 //                  BandMatrixMap), BlockPreconditioner, chart switching, projection, observables,
-//                  angular accelerations and reaction forces (accelerations.hpp)
+//                  angular accelerations and reaction forces (accelerations.hpp); mechanisms
+//                  (Scene<..., Joints<...>> or Mechanism<...>): the constraint solve
+//                  (joints.hpp), projection, assembly, residuals, joint reactions (assembly.hpp)
 
 #include "tumble/body/kinematics.hpp"
 #include "tumble/body/mass_properties.hpp"
@@ -28,6 +32,15 @@
 #include "tumble/force/point_force.hpp"
 #include "tumble/force/spring_damper.hpp"
 #include "tumble/force/user_force.hpp"
+#include "tumble/joint/concept.hpp"
+#include "tumble/joint/cylindrical.hpp"
+#include "tumble/joint/distance.hpp"
+#include "tumble/joint/prismatic.hpp"
+#include "tumble/joint/revolute.hpp"
+#include "tumble/joint/spherical.hpp"
+#include "tumble/joint/universal.hpp"
+#include "tumble/joint/user_joint.hpp"
+#include "tumble/joint/weld.hpp"
 #include "tumble/orientation/concept.hpp"
 #include "tumble/orientation/euler_angles.hpp"
 #include "tumble/orientation/euler_parameters.hpp"
@@ -35,9 +48,11 @@
 #include "tumble/orientation/rodrigues.hpp"
 #include "tumble/orientation/rotation_vector.hpp"
 #include "tumble/scene/accelerations.hpp"
+#include "tumble/scene/assembly.hpp"
 #include "tumble/scene/chart.hpp"
 #include "tumble/scene/charts.hpp"
 #include "tumble/scene/jacobian.hpp"
+#include "tumble/scene/joints.hpp"
 #include "tumble/scene/observables.hpp"
 #include "tumble/scene/preconditioner.hpp"
 #include "tumble/scene/projection.hpp"

@@ -345,6 +345,16 @@ class RigidBody {
     return velocity_rates_impl([&] { return k.rotation; }, k.omega, w);
   }
 
+  /// The part of velocity_rates that is linear in the wrench: (a_c, alpha) for the wrench w at
+  /// rest (omega = 0), with the attitude `rotation` (read off the centroid only). It is the
+  /// inverse of the body's mass matrix in the velocities [v; omega], applied to w (its dual): what
+  /// a joint's reaction -J^T lambda does to the body's accelerations (scene/joints.hpp). Zero
+  /// translational acceleration for a body held at a fixed point.
+  [[nodiscard]] VelocityRates<S> wrench_response(const Matrix3<S>& rotation,
+                                                 const Wrench<S>& w) const {
+    return velocity_rates_impl([&] { return rotation; }, Vector3<S>::Zero(), w);
+  }
+
   /// Eq. (1.10): alpha = G thetaddot + Gdot thetadot, the angular acceleration in body
   /// components, from the generalized accelerations (e.g. those of accelerations()).
   [[nodiscard]] static Vector3<S> angular_acceleration(const Coords& q, const Coords& qdot,

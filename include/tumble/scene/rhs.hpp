@@ -11,7 +11,9 @@
 // loads (one-body loads with the body's typed kinematics, couplings with both), then the
 // accelerations. Nothing is allocated: the scratch lives in the workspace. A scene without load
 // types (Loads<>) skips the first two passes: each body's rates come from its own block with a
-// zero wrench, and nothing is written to the workspace. FiniteCheck says who checks the result.
+// zero wrench, and nothing is written to the workspace. A mechanism (a scene with joints) adds,
+// between the loads and the accelerations, the joints' reactions from the constraint solve
+// (joints.hpp). FiniteCheck says who checks the result.
 
 #include <cstddef>
 #include <span>
@@ -21,6 +23,7 @@
 #include "tumble/force/concept.hpp"
 #include "tumble/force/coupling.hpp"
 #include "tumble/scene/detail/body_terms.hpp"
+#include "tumble/scene/joints.hpp"
 #include "tumble/scene/scene.hpp"
 #include "tumble/scene/workspace.hpp"
 
@@ -96,7 +99,7 @@ template <FiniteCheck Check = FiniteCheck::each_call, class SceneT, class Y, cla
 void rhs(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y& y,
          std::span<const Matrix3<double>> base, Ydot&& ydot) {
   constexpr bool checked = Check == FiniteCheck::each_call;
-  if constexpr (std::tuple_size_v<typename SceneT::LoadTypes> == 0) {
+  if constexpr (std::tuple_size_v<typename SceneT::LoadTypes> == 0 && !SceneT::has_joints) {
     // No loads: each body's rates from its own block, with a zero wrench; nothing is written to
     // the workspace (no load reads it).
     scene.for_each_entry([&](const auto& e) {
@@ -112,6 +115,9 @@ void rhs(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y& y,
     detail::scene_kinematics(scene, ws, y, base);
     detail::scene_loads(scene, ws, t,
                         std::make_index_sequence<std::tuple_size_v<typename SceneT::LoadTypes>>{});
+    if constexpr (SceneT::has_joints) {
+      detail::constraint_forces(scene, ws);  // the joints' reactions join the loads' wrenches
+    }
     scene.for_each_entry([&](const auto& e) {
       detail::entry_rates<checked>(e, y, ws.kinematics(e), ws.wrench(e.id),
                                    ws.stabilize_constraints, ydot);

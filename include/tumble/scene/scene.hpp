@@ -39,6 +39,7 @@
 #include "tumble/core/math.hpp"
 #include "tumble/force/concept.hpp"
 #include "tumble/force/coupling.hpp"
+#include "tumble/joint/concept.hpp"
 #include "tumble/scene/chart.hpp"
 #include "tumble/scene/state.hpp"
 
@@ -46,6 +47,18 @@ namespace tumble {
 
 template <class... B> struct Bodies {};
 template <class... L> struct Loads {};
+/// The joint types a scene may hold (joint/): a scene with joints is a mechanism.
+template <class... J> struct Joints {};
+
+/// A typed handle to a joint of a scene.
+template <class Joint> struct JointId {
+  int id = -1;     ///< global index (order of addition)
+  int local = -1;  ///< index among the joints of the same type
+};
+
+/// The ground, as the second body of a joint (Scene::add_joint(a, ground, joint)).
+struct Ground {};
+inline constexpr Ground ground{};
 
 /// A typed handle to a body of a scene.
 template <class Body> struct BodyId {
@@ -121,12 +134,30 @@ template <class Load> struct Attached {
   int a;
   int b;
 };
+
+/// A joint between bodies a and b (b = -1: the ground); its rows start at `row` of the scene's
+/// constraint vector.
+template <class Joint> struct AttachedJoint {
+  Joint joint;
+  int a;
+  int b;
+  int row;
+  int id;  ///< global joint index (order of addition)
+};
 }  // namespace detail
 
-template <class BodyList, class LoadList = Loads<>, StateForm Form = StateForm::quasi_velocities>
+template <class BodyList, class LoadList = Loads<>, StateForm Form = StateForm::quasi_velocities,
+          class JointList = Joints<>>
 class Scene;
 
-template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Loads<L...>, Form> {
+/// A scene with joints, the joint list second: Mechanism<Bodies<Link>, Joints<Revolute>,
+/// Loads<UniformGravity>>.
+template <class BodyList, class JointList, class LoadList = Loads<>,
+          StateForm Form = StateForm::quasi_velocities>
+using Mechanism = Scene<BodyList, LoadList, Form, JointList>;
+
+template <class... B, class... L, StateForm Form, class... J>
+class Scene<Bodies<B...>, Loads<L...>, Form, Joints<J...>> {
   static_assert(sizeof...(B) > 0, "a Scene needs at least one body type");
   static_assert((std::is_same_v<typename B::Scalar, double> && ...),
                 "bodies integrated in time use the scalar type double");
@@ -134,6 +165,8 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
   static_assert(((detail::count<L, L...>() == 1) && ...), "list each load type once");
   static_assert(((ForceElement<L> || CouplingElement<L>)&&...),
                 "each load type must be a ForceElement (one body) or a CouplingElement (two)");
+  static_assert(((detail::count<J, J...>() == 1) && ...), "list each joint type once");
+  static_assert((JointElement<J> && ...), "each joint type must be a JointElement (joint/)");
 
  public:
   /// The layout of the state: [q; qdot] or [q; v; omega] per body (state.hpp).
@@ -141,6 +174,8 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
   template <class Body> using Entry = detail::SceneEntry<Body, Form>;
   template <class Load> using Attached = detail::Attached<Load>;
   using LoadTypes = std::tuple<L...>;
+  using JointTypes = std::tuple<J...>;
+  template <class Joint> using AttachedJoint = detail::AttachedJoint<Joint>;
   /// Per body type, the kinematics its loads read (the layout of a workspace), in cache lines of
   /// their own (written at every evaluation, by one thread: core/cache_line.hpp).
   using KinematicsStorage =
@@ -151,7 +186,11 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
 
   /// True when every load type can be evaluated in Jet scalars: then the exact Jacobian
   /// (jacobian.hpp) is available.
-  static constexpr bool differentiable = (detail::DifferentiableLoad<L> && ...);
+  /// A scene with joints is not differentiated yet (its Jacobian is CVODE's difference quotients).
+  static constexpr bool differentiable =
+      (detail::DifferentiableLoad<L> && ...) && sizeof...(J) == 0;
+  /// True when the scene may hold joints (a mechanism: scene/joints.hpp).
+  static constexpr bool has_joints = sizeof...(J) > 0;
   /// True when some load type acts between two bodies.
   static constexpr bool has_couplings = (CouplingElement<L> || ...);
   /// True if the scene has constrained coordinates (Euler parameters).
@@ -240,6 +279,32 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
     std::get<std::vector<Attached<Load>>>(loads_).push_back({std::move(load), a.id, b.id});
   }
 
+  /// Join bodies a and b by a joint (its points and axes given in each body's components).
+  /// \throws std::invalid_argument for a handle not of this scene, or a = b.
+  template <class BodyA, class BodyB, class Joint>
+  JointId<Joint> add_joint(BodyId<BodyA> a, BodyId<BodyB> b, Joint joint) {
+    static_assert(detail::contains<Joint, J...>,
+                  "this joint type is not in the scene's Joints<...>");
+    if (a.id == b.id) {
+      throw std::invalid_argument(std::string("tumble::Scene::add_joint: a ") + Joint::name +
+                                  " joint needs two different bodies (body " +
+                                  std::to_string(a.id) +
+                                  " twice); join a body to the ground "
+                                  "with add_joint(body, tumble::ground, joint)");
+    }
+    entry(a).needs_rotation = true;
+    entry(b).needs_rotation = true;
+    return attach_joint(a.id, b.id, std::move(joint));
+  }
+  /// Join body a to the ground (the joint's data for side b in inertial components).
+  template <class BodyA, class Joint>
+  JointId<Joint> add_joint(BodyId<BodyA> a, Ground /*ground*/, Joint joint) {
+    static_assert(detail::contains<Joint, J...>,
+                  "this joint type is not in the scene's Joints<...>");
+    entry(a).needs_rotation = true;
+    return attach_joint(a.id, -1, std::move(joint));
+  }
+
   /// Add a user event (see Event).
   void add_event(Event event) {
     if (!event.function) {
@@ -265,6 +330,22 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
                                   " does not refer to a body of this scene");
     }
     return group[b.local];
+  }
+
+  /// The number of joints and of constraint equations (the length of lambda).
+  [[nodiscard]] int joint_count() const { return joint_count_; }
+  [[nodiscard]] int constraint_count() const { return constraint_count_; }
+  /// The joints of one type, in the order they were added.
+  template <class Joint> [[nodiscard]] const std::vector<AttachedJoint<Joint>>& joints() const {
+    return std::get<std::vector<AttachedJoint<Joint>>>(joints_);
+  }
+  template <class Joint> [[nodiscard]] const AttachedJoint<Joint>& joint(JointId<Joint> j) const {
+    const auto& list = joints<Joint>();
+    if (j.local < 0 || j.local >= static_cast<int>(list.size()) || list[j.local].id != j.id) {
+      throw std::invalid_argument("tumble::Scene: the joint handle " + std::to_string(j.id) +
+                                  " does not refer to a joint of this scene");
+    }
+    return list[j.local];
   }
 
   /// The bodies with a singular chart (three-parameter sets), in id order: one root function
@@ -306,12 +387,16 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
     for (const auto& [first, last] : block) {
       bw = std::max(bw, last - first);
     }
-    for_each_load([&](const auto& at) {
-      if (at.b >= 0) {
-        bw = std::max(
-            {bw, block[at.b].second - block[at.a].first, block[at.a].second - block[at.b].first});
+    const auto link = [&](int a, int b) {
+      if (b >= 0) {
+        bw = std::max({bw, block[b].second - block[a].first, block[a].second - block[b].first});
       }
-    });
+    };
+    for_each_load([&](const auto& at) { link(at.a, at.b); });
+    // A joint's multipliers make each of its bodies' accelerations depend on both: a coupling
+    // too. (Through a chain of joints the solve couples every body with every other: a band
+    // Jacobian of a mechanism is the difference quotients' band, not the exact one.)
+    for_each_joint([&](const auto& at) { link(at.a, at.b); });
     return bw;
   }
 
@@ -328,6 +413,10 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
   /// f(attached) for every load of every type.
   template <class F> void for_each_load(F&& f) const {
     std::apply([&](const auto&... lists) { (for_each_in(lists, f), ...); }, loads_);
+  }
+  /// f(attached joint) for every joint of every type (each call sees the concrete joint type).
+  template <class F> void for_each_joint(F&& f) const {
+    std::apply([&](const auto&... lists) { (for_each_in(lists, f), ...); }, joints_);
   }
 
  private:
@@ -352,6 +441,15 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
   }
   template <class Body> Entry<Body>& entry(BodyId<Body> b) {
     return const_cast<Entry<Body>&>(std::as_const(*this).entry(b));
+  }
+
+  template <class Joint> JointId<Joint> attach_joint(int a, int b, Joint joint) {
+    auto& list = std::get<std::vector<AttachedJoint<Joint>>>(joints_);
+    const JointId<Joint> handle{joint_count_, static_cast<int>(list.size())};
+    list.push_back({std::move(joint), a, b, constraint_count_, joint_count_});
+    constraint_count_ += Joint::size;
+    ++joint_count_;
+    return handle;
   }
 
   /// Names the first non-finite field of an initial state and its value, and rejects a rotation
@@ -421,6 +519,9 @@ template <class... B, class... L, StateForm Form> class Scene<Bodies<B...>, Load
 
   std::tuple<std::vector<Entry<B>>...> groups_;
   std::tuple<std::vector<Attached<L>>...> loads_;
+  std::tuple<std::vector<AttachedJoint<J>>...> joints_;
+  int joint_count_ = 0;
+  int constraint_count_ = 0;
   std::vector<Location> locations_;
   /// Per one-body load type, per body: the indices of its loads of that type.
   std::array<std::vector<std::vector<int>>, sizeof...(L)> loads_on_;

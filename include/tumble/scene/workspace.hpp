@@ -14,8 +14,11 @@
 #include <cstddef>
 #include <stdexcept>
 #include <tuple>
+#include <type_traits>
 #include <utility>
 #include <vector>
+
+#include <Eigen/Cholesky>
 
 #include "tumble/body/kinematics.hpp"
 #include "tumble/body/wrench.hpp"
@@ -23,6 +26,28 @@
 #include "tumble/core/types.hpp"
 
 namespace tumble {
+
+/// The scratch of a mechanism's constraint solve (scene/joints.hpp), sized once for the scene's
+/// m constraint equations and n bodies; empty for a scene without joints.
+struct JointScratch {
+  /// Where a joint's rows sit and which side of it a body is: the topology the solve walks.
+  struct Touch {
+    int row;   ///< first row of the joint
+    int size;  ///< its number of rows
+    int side;  ///< 0: the body is the joint's a, 1: its b
+  };
+  Eigen::Matrix<double, Eigen::Dynamic, 6> ja, jb;  ///< the velocity Jacobian blocks, m x 6
+  Eigen::Matrix<double, 6, Eigen::Dynamic> xa, xb;  ///< B J^T (the bodies' wrench responses)
+  Eigen::VectorXd c, gamma, rhs, lambda, work;      ///< m each
+  Eigen::MatrixXd a;                                ///< J B J^T, m x m
+  Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> acc;  ///< per body: [a_c; alpha] (free accelerations)
+  Eigen::Matrix<double, 6, Eigen::Dynamic> nu;   ///< per body: [v; omega] (the projection's)
+  std::vector<std::vector<Touch>> touches;       ///< per body: the joints on it
+  std::vector<int> joint_a, joint_b;             ///< per row: its joint's bodies (-1: ground)
+  Eigen::VectorXd y;                             ///< a state's copy (CVODE's projection)
+  int rank = 0;                                  ///< the rank the last solve found
+};
 
 template <class SceneT> class SceneWorkspace {
  public:
@@ -38,6 +63,39 @@ template <class SceneT> class SceneWorkspace {
     scene.for_each_entry([&](const auto& e) { views_[e.id] = &kinematics(e); });
     if constexpr (SceneT::has_couplings) {
       gain_.assign(scene.body_count(), Matrix<double, 7, 6>::Zero());
+    }
+    if constexpr (SceneT::has_joints) {
+      const int m = scene.constraint_count();
+      const int n = scene.body_count();
+      JointScratch& j = joints_;
+      j.ja.setZero(m, 6);
+      j.jb.setZero(m, 6);
+      j.xa.setZero(6, m);
+      j.xb.setZero(6, m);
+      j.c.setZero(m);
+      j.gamma.setZero(m);
+      j.rhs.setZero(m);
+      j.lambda.setZero(m);
+      j.work.setZero(m);
+      j.a.setZero(m, m);
+      j.ldlt = Eigen::LDLT<Eigen::MatrixXd>(m);
+      j.acc.setZero(6, n);
+      j.nu.setZero(6, n);
+      j.touches.assign(n, {});
+      j.joint_a.assign(m, -1);
+      j.joint_b.assign(m, -1);
+      j.y.setZero(scene.size());
+      scene.for_each_joint([&](const auto& at) {
+        constexpr int size = std::remove_cvref_t<decltype(at.joint)>::size;
+        j.touches[at.a].push_back({at.row, size, 0});
+        if (at.b >= 0) {
+          j.touches[at.b].push_back({at.row, size, 1});
+        }
+        for (int r = at.row; r < at.row + size; ++r) {
+          j.joint_a[r] = at.a;
+          j.joint_b[r] = at.b;
+        }
+      });
     }
   }
   SceneWorkspace(const SceneWorkspace&) = delete;
@@ -57,6 +115,10 @@ template <class SceneT> class SceneWorkspace {
   /// in the quasi-velocity form; rows beyond those unused.
   [[nodiscard]] Matrix<double, 7, 6>& gain(int id) { return gain_[id]; }
 
+  /// The constraint solve's scratch (a mechanism; empty otherwise).
+  [[nodiscard]] JointScratch& joints() { return joints_; }
+  [[nodiscard]] const JointScratch& joints() const { return joints_; }
+
   /// Euler parameters: the Baumgarte-stabilized constraint acceleration (Adams) when true, the
   /// plain constrained acceleration (BDF with projection) when false. See rhs.hpp.
   bool stabilize_constraints = true;
@@ -67,6 +129,7 @@ template <class SceneT> class SceneWorkspace {
   Lines<Wrench<double>> wrench_;
   Lines<const KinematicsView<double>*> views_;
   Lines<Matrix<double, 7, 6>> gain_;
+  JointScratch joints_;
 };
 
 }  // namespace tumble

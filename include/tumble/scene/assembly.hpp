@@ -1,0 +1,320 @@
+#pragma once
+// A mechanism's state on its constraints (scene/joints.hpp): the projection of positions and
+// velocities onto C(q) = 0 and J nu = 0 that the integrators apply after every step, the assembly
+// of an initial state from a rough one, the constraint residuals, and the joints' reactions.
+//
+// Projection, in each body's velocities nu = [v; omega] with the metric of the mass matrix M:
+// - positions: Newton on C, each step the smallest displacement in the kinetic-energy norm,
+//     delta = -B J^T (J B J^T)^+ C,   B = M^{-1} per body (RigidBody::wrench_response),
+//   applied as r_oc += delta_v and theta += P::thetadot(theta, delta_omega) (a small rotation in
+//   body components; Euler parameters renormalized), until max |C| <= the tolerance;
+// - velocities: nu -= B J^T (J B J^T)^+ J nu, exact in one step (the constraint is linear in nu).
+// The Euler-parameter projection (projection.hpp) is the one-constraint case of the same idea and
+// is applied first.
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <span>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <vector>
+
+#include "tumble/scene/joints.hpp"
+#include "tumble/scene/projection.hpp"
+#include "tumble/scene/rhs.hpp"
+#include "tumble/scene/scene.hpp"
+#include "tumble/scene/workspace.hpp"
+
+namespace tumble {
+
+/// How far a state is from a mechanism's constraints, and where.
+struct ConstraintResidual {
+  double position = 0.0;  ///< max |C| over all rows (m for points, dimensionless for directions)
+  double velocity = 0.0;  ///< max |J nu| (m/s, rad/s)
+  int joint = -1;         ///< the joint with the largest |C| (global index), -1 without joints
+  int rank = 0;           ///< the rank of J B J^T (< constraint_count(): redundant constraints)
+};
+
+/// Options of assemble().
+struct AssemblyOptions {
+  /// The bodies (ids) that must not move: the rest are placed around them (say, a crank given
+  /// its angle and rate).
+  std::vector<int> keep;
+  /// Stop when max |C| <= tolerance * L, L = max(1 m, the largest |r_oc|) (relative to the
+  /// mechanism's size), and the velocities are projected exactly.
+  double tolerance = 1e-12;
+  int max_iterations = 50;
+};
+
+/// What assemble() did.
+struct AssemblyReport {
+  int iterations = 0;
+  ConstraintResidual before;
+  ConstraintResidual after;
+};
+
+/// The reaction of a joint on its two bodies at one state, each reduced to that body's reference
+/// point as loads' wrenches are (wrench.hpp: force inertial, moment about c in body components);
+/// on the ground side `on_b` is the reaction on the ground (force inertial, moment about the
+/// inertial origin, inertial components).
+struct JointReaction {
+  Wrench<double> on_a;
+  Wrench<double> on_b;
+};
+
+namespace detail {
+
+/// The integrators' projection after each step: Newton until max |C| <= this times the length
+/// scale (a step leaves |C| at the local error, so one or two iterations), at most this many.
+inline constexpr double kJointProjectionTolerance = 1e-13;
+inline constexpr int kJointProjectionIterations = 8;
+/// A residual above this (m) after the projection is a failure (the step went off the manifold
+/// further than Newton can bring it back).
+inline constexpr double kJointProjectionFailure = 1e-6;
+
+/// The name and bodies of joint `id`, for messages.
+template <class SceneT> std::string describe_joint(const SceneT& scene, int id) {
+  std::string out = "joint " + std::to_string(id);
+  scene.for_each_joint([&](const auto& at) {
+    if (at.id == id) {
+      out += std::string(" (") + std::remove_cvref_t<decltype(at.joint)>::name + ", body " +
+             std::to_string(at.a) + " to " +
+             (at.b >= 0 ? "body " + std::to_string(at.b) : std::string("the ground")) + ")";
+    }
+  });
+  return out;
+}
+
+/// max |C| and the joint that has it, from the rows in ws.
+template <class SceneT>
+void position_residual(const SceneT& scene, const JointScratch& j, ConstraintResidual& r) {
+  r.position = 0.0;
+  r.joint = -1;
+  scene.for_each_joint([&](const auto& at) {
+    constexpr int m = std::remove_cvref_t<decltype(at.joint)>::size;
+    const double c = j.c.template segment<m>(at.row).cwiseAbs().maxCoeff();
+    if (!(c <= r.position)) {  // NaN counts as the worst
+      r.position = c;
+      r.joint = at.id;
+    }
+  });
+}
+
+/// Every body's velocities nu = [v; omega] (6-vector columns; v = 0 held at a point) from ws.
+template <class SceneT>
+void body_velocities(const SceneT& scene, const SceneWorkspace<SceneT>& ws,
+                     Eigen::Matrix<double, 6, Eigen::Dynamic>& nu) {
+  scene.for_each_entry([&](const auto& e) {
+    nu.col(e.id).template head<3>() = ws.view(e.id).velocity;
+    nu.col(e.id).template tail<3>() = ws.view(e.id).omega;
+  });
+}
+
+/// Moves each body by the displacement delta (6-vector columns: [dr; dphi], dphi a small rotation
+/// in body components).
+template <class SceneT, class Y>
+void displace(const SceneT& scene, const Eigen::Matrix<double, 6, Eigen::Dynamic>& delta, Y& y) {
+  scene.for_each_entry([&](const auto& e) {
+    using Body = std::remove_cvref_t<decltype(e.body)>;
+    using P = typename Body::Param;
+    if constexpr (!Body::fixed) {
+      y.template segment<3>(e.offset) += delta.col(e.id).template head<3>();
+    }
+    const int it = e.offset + e.theta_at;
+    typename Body::Theta th = y.template segment<Body::n_theta>(it);
+    th += P::thetadot(th, Vector3<double>(delta.col(e.id).template tail<3>()));
+    if constexpr (P::has_constraint) {
+      th /= th.norm();
+    }
+    y.template segment<Body::n_theta>(it) = th;
+  });
+}
+
+/// Writes each body's velocities nu (6-vector columns) into y in the scene's state form.
+template <class SceneT, class Y>
+void set_velocities(const SceneT& scene, const Eigen::Matrix<double, 6, Eigen::Dynamic>& nu, Y& y) {
+  scene.for_each_entry([&](const auto& e) {
+    using Body = std::remove_cvref_t<decltype(e.body)>;
+    using E = std::remove_cvref_t<decltype(e)>;
+    if constexpr (!Body::fixed) {
+      y.template segment<3>(e.rates) = nu.col(e.id).template head<3>();
+    }
+    const Vector3<double> om = nu.col(e.id).template tail<3>();
+    if constexpr (E::quasi) {
+      y.template segment<3>(e.rates + Body::n_r) = om;
+    } else {
+      const typename Body::Theta th = y.template segment<Body::n_theta>(e.offset + e.theta_at);
+      y.template segment<Body::n_theta>(e.rates + Body::n_r) = Body::Param::thetadot(th, om);
+    }
+  });
+}
+
+/// The length that makes the projection's tolerance relative: max(1 m, the largest |r_oc|).
+template <class SceneT> double length_scale(const SceneT& scene, const SceneWorkspace<SceneT>& ws) {
+  double l = 1.0;
+  scene.for_each_entry([&](const auto& e) { l = std::max(l, ws.view(e.id).position.norm()); });
+  return l;
+}
+
+/// The projection of the file comment, in place, for the bodies `mobile(id)` allows to move:
+/// Newton until max |C| <= tolerance * length_scale (or max_iterations), then the velocities.
+/// Allocates nothing. Returns the residuals after it and the iterations taken in `iterations`.
+template <class SceneT, class Y, class Mobile>
+ConstraintResidual project_constraints(const SceneT& scene, SceneWorkspace<SceneT>& ws, Y& y,
+                                       std::span<const Matrix3<double>> base, double tolerance,
+                                       int max_iterations, Mobile&& mobile, int& iterations) {
+  JointScratch& j = ws.joints();
+  Eigen::Matrix<double, 6, Eigen::Dynamic>& delta = j.acc;  // scratch: no solve is running
+  ConstraintResidual res;
+  iterations = 0;
+  double tol = tolerance;
+  for (;;) {
+    scene_kinematics(scene, ws, y, base);
+    joint_rows(scene, ws);
+    position_residual(scene, j, res);
+    if (iterations == 0) {
+      tol = tolerance * length_scale(scene, ws);
+    }
+    if (res.position <= tol || iterations >= max_iterations || !std::isfinite(res.position)) {
+      break;
+    }
+    joint_responses(scene, ws, mobile);
+    joint_schur(j);
+    joint_solve(j, j.c, j.lambda);
+    joint_displacements(j, j.lambda, delta);
+    displace(scene, delta, y);
+    ++iterations;
+  }
+  // Velocities at the final positions (the rows are those of the last evaluation).
+  joint_responses(scene, ws, mobile);
+  joint_schur(j);
+  body_velocities(scene, ws, j.nu);
+  joint_apply(j, j.nu, j.rhs);
+  joint_solve(j, j.rhs, j.lambda);
+  joint_displacements(j, j.lambda, delta);
+  j.nu += delta;
+  set_velocities(scene, j.nu, y);
+  scene_kinematics(scene, ws, y, base);
+  joint_rows(scene, ws);
+  body_velocities(scene, ws, j.nu);
+  joint_apply(j, j.nu, j.rhs);
+  res.velocity = j.rhs.size() > 0 ? j.rhs.cwiseAbs().maxCoeff() : 0.0;
+  res.rank = j.rank;
+  return res;
+}
+
+}  // namespace detail
+
+/// The residuals of a state on a mechanism's constraints.
+template <class SceneT>
+ConstraintResidual constraint_residual(const SceneT& scene, const SceneStateView& s) {
+  ConstraintResidual res;
+  if constexpr (SceneT::has_joints) {
+    SceneWorkspace<SceneT> ws(scene);
+    detail::scene_kinematics(scene, ws, s.y, s.base);
+    detail::joint_rows(scene, ws);
+    JointScratch& j = ws.joints();
+    detail::position_residual(scene, j, res);
+    Eigen::Matrix<double, 6, Eigen::Dynamic> nu(6, scene.body_count());
+    detail::body_velocities(scene, ws, nu);
+    detail::joint_apply(j, nu, j.rhs);
+    res.velocity = j.rhs.size() > 0 ? j.rhs.cwiseAbs().maxCoeff() : 0.0;
+    detail::joint_responses(scene, ws, [](int) { return true; });
+    detail::joint_schur(j);
+    detail::joint_solve(j, j.rhs, j.lambda);
+    res.rank = j.rank;
+  }
+  return res;
+}
+
+/// Puts a rough initial state of a mechanism onto its constraints (Newton on C, then the
+/// velocities; see the file comment), moving only the bodies not in options.keep.
+/// \throws std::invalid_argument naming the joint with the largest residual when the constraints
+///         cannot be met (the loop does not close, or only kept bodies could close it); the
+///         state is then left as it was.
+template <class SceneT>
+AssemblyReport assemble(const SceneT& scene, SceneState& s, const AssemblyOptions& options = {}) {
+  static_assert(SceneT::has_joints, "assemble() is for scenes with joints (Joints<...>)");
+  if (s.y.size() != scene.size() || static_cast<int>(s.base.size()) != scene.body_count()) {
+    throw std::invalid_argument("tumble::assemble: the state does not fit the scene");
+  }
+  if (!(options.tolerance > 0.0) || options.max_iterations < 1) {
+    throw std::invalid_argument("tumble::assemble: the tolerance must be > 0 and max_iterations "
+                                ">= 1");
+  }
+  std::vector<char> mobile(static_cast<std::size_t>(scene.body_count()), 1);
+  for (const int id : options.keep) {
+    if (id < 0 || id >= scene.body_count()) {
+      throw std::invalid_argument("tumble::assemble: keep names body " + std::to_string(id) +
+                                  ", which is not in the scene");
+    }
+    mobile[static_cast<std::size_t>(id)] = 0;
+  }
+  AssemblyReport report;
+  report.before = constraint_residual(scene, s);
+  SceneWorkspace<SceneT> ws(scene);
+  Eigen::VectorXd y = s.y;
+  if constexpr (SceneT::has_constraints) {
+    Eigen::VectorXd corr(y.size()), no_error;
+    project(scene, y, corr, no_error);
+    y += corr;
+  }
+  detail::project_constraints(
+      scene, ws, y, std::span<const Matrix3<double>>(s.base), options.tolerance,
+      options.max_iterations, [&](int id) { return mobile[static_cast<std::size_t>(id)] != 0; },
+      report.iterations);
+  // The kept bodies' blocks bit for bit as given (the Newton steps left them alone but for the
+  // renormalization of their Euler parameters); then the residuals and the rank of the whole
+  // mechanism, every body mobile.
+  double scale = 1.0;
+  scene.for_each_entry([&](const auto& e) {
+    using E = std::remove_cvref_t<decltype(e)>;
+    if (mobile[static_cast<std::size_t>(e.id)] == 0) {
+      y.template segment<E::block_size>(e.offset) = s.y.template segment<E::block_size>(e.offset);
+    }
+    if constexpr (!std::remove_cvref_t<decltype(e.body)>::fixed) {
+      scale = std::max(scale, y.template segment<3>(e.offset).norm());
+    }
+  });
+  report.after = constraint_residual(
+      scene, SceneStateView(y.data(), y.size(), std::span<const Matrix3<double>>(s.base)));
+  if (!(report.after.position <= options.tolerance * scale) ||
+      !(report.after.velocity <= 1e-9 * scale * (1.0 + report.before.velocity))) {
+    std::ostringstream os;
+    os.precision(6);
+    os << "tumble::assemble: the constraints cannot be met: "
+       << detail::describe_joint(scene, report.after.joint)
+       << " is off by |C| = " << report.after.position << " after " << report.iterations
+       << " Newton iterations (tolerance " << options.tolerance << "; started at "
+       << report.before.position << ", " << detail::describe_joint(scene, report.before.joint)
+       << "); check the joints' points and axes, and that the bodies not kept can close the loop";
+    throw std::invalid_argument(os.str());
+  }
+  s.y = y;
+  return report;
+}
+
+/// The reaction of joint j on its bodies at the state s and time t (the loads are evaluated at t),
+/// from the multipliers of the constraint solve: -J_a^T lambda_j on body a, -J_b^T lambda_j on b.
+template <class SceneT, class Joint>
+JointReaction joint_reaction(const SceneT& scene, const SceneStateView& s, double t,
+                             JointId<Joint> joint) {
+  const auto& at = scene.joint(joint);
+  SceneWorkspace<SceneT> ws(scene);
+  Eigen::VectorXd ydot(scene.size());
+  rhs(scene, ws, t, s.y, s.base, ydot);
+  const JointScratch& j = ws.joints();
+  constexpr int m = Joint::size;
+  const auto l = j.lambda.template segment<m>(at.row);
+  JointReaction r;
+  r.on_a.force = -j.ja.template middleRows<m>(at.row).template leftCols<3>().transpose() * l;
+  r.on_a.moment = -j.ja.template middleRows<m>(at.row).template rightCols<3>().transpose() * l;
+  r.on_b.force = -j.jb.template middleRows<m>(at.row).template leftCols<3>().transpose() * l;
+  r.on_b.moment = -j.jb.template middleRows<m>(at.row).template rightCols<3>().transpose() * l;
+  return r;
+}
+
+}  // namespace tumble

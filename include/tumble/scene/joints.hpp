@@ -1,0 +1,184 @@
+#pragma once
+// The constraint solve of a mechanism (a scene with joints, joint/): the multipliers lambda of
+//   M nudot = f + W - J^T lambda,   J nudot = gamma
+// (the reference chapter's M qddot = f_v + Q - C_q^T lambda, C_q qddot = gamma, written in each
+// body's velocities nu = [v; omega], where M is the Newton-Euler mass matrix and C_q = J G^{-1}),
+// solved through the structure: M is block diagonal per body, and its inverse applied to a wrench
+// is the body's closed form (RigidBody::wrench_response), so with B_i = M_i^{-1}
+//   (J B J^T) lambda = J nudot_free - gamma,   nudot_free = B (f + W)
+// is a system of the size of the constraints (the Schur complement), assembled from the pairs of
+// joints that share a body. Then each joint adds its reaction -J_a^T lambda, -J_b^T lambda to
+// its bodies' wrenches, and the scene's accelerations pass runs as for free bodies.
+//
+// Redundant constraints (a planar linkage built of spatial joints, Bricard's mechanism) make
+// J B J^T singular though the motion exists. The solve is the pivoted LDL^T of the Jacobi-scaled
+// matrix, with pivots below kRankTolerance (relative) taken as zero: the dependent constraints
+// carry no reaction (a basic solution, not the minimum-norm one). The accelerations do not depend
+// on that choice: two solutions differ by a null vector of J^T.
+//
+// The solve reads the kinematics and wrenches the right-hand side's first two passes left in the
+// workspace (rhs.hpp), and writes lambda there.
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include <Eigen/Cholesky>
+
+#include "tumble/body/wrench.hpp"
+#include "tumble/joint/concept.hpp"
+#include "tumble/scene/scene.hpp"
+#include "tumble/scene/workspace.hpp"
+
+namespace tumble::detail {
+
+/// Pivots of the Jacobi-scaled J B J^T below this (relative to the largest) count as zero.
+inline constexpr double kRankTolerance = 1e-10;
+
+/// Every joint's rows (C, J_a, J_b, gamma) at the kinematics in ws.
+template <class SceneT> void joint_rows(const SceneT& scene, SceneWorkspace<SceneT>& ws) {
+  JointScratch& j = ws.joints();
+  scene.for_each_joint([&](const auto& at) {
+    constexpr int m = std::remove_cvref_t<decltype(at.joint)>::size;
+    ConstraintRows<double, m> r;
+    at.joint.evaluate(ws.view(at.a), at.b >= 0 ? ws.view(at.b) : ground_view<double>(), r);
+    j.c.template segment<m>(at.row) = r.c;
+    j.ja.template middleRows<m>(at.row) = r.ja;
+    j.jb.template middleRows<m>(at.row) = r.jb;
+    j.gamma.template segment<m>(at.row) = r.gamma;
+  });
+}
+
+/// X = B J^T, column by column: each body's response to the wrench of each row of its joints
+/// (zero for the bodies `mobile` excludes, which then do not move in a projection).
+template <class SceneT, class Mobile>
+void joint_responses(const SceneT& scene, SceneWorkspace<SceneT>& ws, Mobile&& mobile) {
+  JointScratch& j = ws.joints();
+  scene.for_each_entry([&](const auto& e) {
+    for (const JointScratch::Touch& t : j.touches[e.id]) {
+      auto& x = t.side == 0 ? j.xa : j.xb;
+      if (!mobile(e.id)) {
+        x.middleCols(t.row, t.size).setZero();
+        continue;
+      }
+      const auto& jac = t.side == 0 ? j.ja : j.jb;
+      for (int r = t.row; r < t.row + t.size; ++r) {
+        const Wrench<double> w{jac.row(r).template head<3>().transpose(),
+                               jac.row(r).template tail<3>().transpose()};
+        const auto vr = e.body.wrench_response(ws.view(e.id).rotation, w);
+        x.col(r).template head<3>() = vr.acceleration;
+        x.col(r).template tail<3>() = vr.alpha;
+      }
+    }
+  });
+}
+
+/// A = J B J^T from the pairs of joint rows that share a body, then its pivoted LDL^T.
+inline void joint_schur(JointScratch& j) {
+  j.a.setZero();
+  for (const auto& touches : j.touches) {
+    for (const JointScratch::Touch& p : touches) {
+      const auto& jp = p.side == 0 ? j.ja : j.jb;
+      for (const JointScratch::Touch& q : touches) {
+        const auto& xq = q.side == 0 ? j.xa : j.xb;
+        j.a.block(p.row, q.row, p.size, q.size).noalias() +=
+            jp.middleRows(p.row, p.size).lazyProduct(xq.middleCols(q.row, q.size));
+      }
+    }
+  }
+  // Jacobi scaling (unit diagonal), so that the rank test compares like with like whatever the
+  // units of the rows (m against rad) and the bodies' masses; a zero diagonal (a row no mobile
+  // body can change) stays zero.
+  for (Eigen::Index i = 0; i < j.a.rows(); ++i) {
+    const double d = j.a(i, i);
+    j.work(i) = d > 0.0 ? 1.0 / std::sqrt(d) : 0.0;
+  }
+  j.a = j.work.asDiagonal() * j.a * j.work.asDiagonal();
+  j.ldlt.compute(j.a);
+}
+
+/// x solving A x = b through the factorization of joint_schur (A = J B J^T, scaled inside): a
+/// basic solution, the dependent rows' unknowns zero. Sets j.rank. x must not alias b.
+inline void joint_solve(JointScratch& j, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+  x = j.work.asDiagonal() * b;
+  x = j.ldlt.transpositionsP() * x;
+  j.ldlt.matrixL().solveInPlace(x);
+  const auto& d = j.ldlt.vectorD();
+  const double tol = kRankTolerance * (d.size() > 0 ? d.cwiseAbs().maxCoeff() : 0.0);
+  j.rank = 0;
+  for (Eigen::Index i = 0; i < d.size(); ++i) {
+    if (std::abs(d(i)) > tol) {
+      x(i) /= d(i);
+      ++j.rank;
+    } else {
+      x(i) = 0.0;
+    }
+  }
+  j.ldlt.matrixU().solveInPlace(x);
+  x = j.ldlt.transpositionsP().transpose() * x;
+  x = j.work.asDiagonal() * x;
+}
+
+/// The rows' rate J nu' for per-body 6-vectors nu' (the columns of `per_body`).
+inline void joint_apply(const JointScratch& j, const Eigen::Matrix<double, 6, Eigen::Dynamic>& v,
+                        Eigen::VectorXd& out) {
+  for (Eigen::Index r = 0; r < out.size(); ++r) {
+    double s = j.ja.row(r).dot(v.col(j.joint_a[r]).transpose());
+    if (j.joint_b[r] >= 0) {
+      s += j.jb.row(r).dot(v.col(j.joint_b[r]).transpose());
+    }
+    out(r) = s;
+  }
+}
+
+/// The change of each body's velocities (6-vector columns of `out`, zero for bodies without
+/// joints) for the multipliers mu: -B J^T mu.
+inline void joint_displacements(const JointScratch& j, const Eigen::VectorXd& mu,
+                                Eigen::Matrix<double, 6, Eigen::Dynamic>& out) {
+  out.setZero();
+  for (Eigen::Index r = 0; r < mu.size(); ++r) {
+    out.col(j.joint_a[r]) -= j.xa.col(r) * mu(r);
+    if (j.joint_b[r] >= 0) {
+      out.col(j.joint_b[r]) -= j.xb.col(r) * mu(r);
+    }
+  }
+}
+
+/// The constraint forces of a mechanism: after the loads' pass (ws holds every body's kinematics
+/// and applied wrench), solves for lambda (kept in ws.joints().lambda) and adds each joint's
+/// reaction to its bodies' wrenches.
+template <class SceneT> void constraint_forces(const SceneT& scene, SceneWorkspace<SceneT>& ws) {
+  JointScratch& j = ws.joints();
+  if (scene.constraint_count() == 0) {
+    return;
+  }
+  joint_rows(scene, ws);
+  // The bodies' free accelerations nudot_free = B (f + W), in the columns of j.acc.
+  scene.for_each_entry([&](const auto& e) {
+    if (j.touches[e.id].empty()) {
+      return;
+    }
+    using Body = std::remove_cvref_t<decltype(e.body)>;
+    const auto vr = e.body.velocity_rates(Body::Theta::Zero(), ws.kinematics(e), ws.wrench(e.id));
+    j.acc.col(e.id).template head<3>() = vr.acceleration;
+    j.acc.col(e.id).template tail<3>() = vr.alpha;
+  });
+  joint_responses(scene, ws, [](int) { return true; });
+  joint_schur(j);
+  joint_apply(j, j.acc, j.rhs);
+  j.rhs -= j.gamma;
+  joint_solve(j, j.rhs, j.lambda);
+  for (Eigen::Index r = 0; r < j.lambda.size(); ++r) {
+    const double l = j.lambda(r);
+    Wrench<double>& wa = ws.wrench(j.joint_a[r]);
+    wa.force -= j.ja.row(r).template head<3>().transpose() * l;
+    wa.moment -= j.ja.row(r).template tail<3>().transpose() * l;
+    if (j.joint_b[r] >= 0) {
+      Wrench<double>& wb = ws.wrench(j.joint_b[r]);
+      wb.force -= j.jb.row(r).template head<3>().transpose() * l;
+      wb.moment -= j.jb.row(r).template tail<3>().transpose() * l;
+    }
+  }
+}
+
+}  // namespace tumble::detail
