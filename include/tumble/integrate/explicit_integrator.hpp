@@ -47,6 +47,7 @@
 #include "tumble/integrate/detail/state_check.hpp"
 #include "tumble/integrate/errors.hpp"
 #include "tumble/integrate/explicit_options.hpp"
+#include "tumble/scene/assembly.hpp"
 #include "tumble/scene/chart.hpp"
 #include "tumble/scene/charts.hpp"
 #include "tumble/scene/projection.hpp"
@@ -242,6 +243,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
           out_state_.y += corr_;
         }
         out_state_.base = base_;
+        if constexpr (SceneT::has_joints) {
+          project_joints(out_state_.y);
+        }
         observer(*it, std::as_const(out_state_));
       }
       if (it != first) {
@@ -354,6 +358,21 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     }
   }
 
+  /// Projects y onto a mechanism's constraints (scene/assembly.hpp), the bases those of x_.
+  template <class Y> void project_joints(Y& y) {
+    int iterations = 0;
+    const ConstraintResidual r = detail::project_constraints(
+        *scene_, ws_, y, bases(), detail::kJointProjectionTolerance,
+        detail::kJointProjectionIterations, [](int) { return true; }, iterations);
+    if (!(r.position <= detail::kJointProjectionFailure)) [[unlikely]] {
+      throw ExplicitIntegrationError("tumble::OdeintIntegrator: the projection onto the joints' "
+                                     "constraints did not converge (max |C| = " +
+                                         detail::format_double(r.position) +
+                                         " at t = " + detail::format_double(t_) + ")",
+                                     IntegrationFailure::solver, t_);
+    }
+  }
+
   /// Projects the quaternions and re-centers the charts of x_ (in their switch zone); true if
   /// y changed. `recentered`: whether a chart was.
   bool after_change(bool& recentered) {
@@ -366,6 +385,13 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       changed = true;
     }
     Eigen::Map<Vec> y = map(x_);
+    if constexpr (SceneT::has_joints) {
+      project_joints(y);
+      if constexpr (!SceneT::has_constraints) {
+        ++stats_.projections;
+      }
+      changed = true;
+    }
     recentered = recenter_charts(*scene_, y, std::span<Matrix3<double>>(base_),
                                  [this](int id) { ++switches_[static_cast<std::size_t>(id)]; }) > 0;
     return changed || recentered;

@@ -33,6 +33,7 @@
 #include "tumble/integrate/cvode.hpp"
 #include "tumble/integrate/detail/state_check.hpp"
 #include "tumble/integrate/errors.hpp"
+#include "tumble/scene/assembly.hpp"
 #include "tumble/scene/charts.hpp"
 #include "tumble/scene/jacobian.hpp"
 #include "tumble/scene/preconditioner.hpp"
@@ -205,8 +206,36 @@ template <class SceneT> class SceneSystem {
     }
   }
 
+  /// A mechanism's output state (CVODE's interpolation between steps) onto its constraints, as
+  /// the steps are: what observers and state() see of a mechanism is on the joints.
+  void project_output(Eigen::VectorXd& y) {
+    if constexpr (SceneT::has_joints) {
+      int iterations = 0;
+      detail::project_constraints(
+          *scene_, ws_, y, bases(), kJointProjectionTolerance, kJointProjectionIterations,
+          [](int) { return true; }, iterations);
+    }
+  }
+
+  /// The Euler parameters' projection, then a mechanism's (scene/assembly.hpp: Newton on the
+  /// positions, the velocities exactly). The error estimate is projected for the quaternions
+  /// only: left whole in the joints' normal directions, it is the larger (safe) estimate.
   void project(double /*t*/, ConstVectorMap y, VectorMap corr, double /*eps*/, VectorMap err) {
     tumble::project(*scene_, y, corr, err);
+    if constexpr (SceneT::has_joints) {
+      Eigen::VectorXd& z = ws_.joints().y;
+      z = y + corr;
+      int iterations = 0;
+      const ConstraintResidual r = detail::project_constraints(
+          *scene_, ws_, z, bases(), kJointProjectionTolerance, kJointProjectionIterations,
+          [](int) { return true; }, iterations);
+      if (!(r.position <= kJointProjectionFailure)) {
+        throw RecoverableError("the projection onto the joints' constraints did not converge "
+                               "(max |C| = " +
+                               format_double(r.position) + ")");
+      }
+      corr = z - y;
+    }
   }
 
   /// Re-centers the charts of y (and base_) that are in their switch zone; true if any changed.
@@ -342,7 +371,16 @@ template <class SceneT> class SceneIntegrator {
     check_state(scene, s0, "SceneIntegrator");
     CvodeOptions cvode = options.cvode_options();
     const bool bdf = cvode.method == CvodeMethod::bdf;
-    const bool project = bdf && options.project_quaternions && SceneT::has_constraints;
+    if constexpr (SceneT::has_joints) {
+      if (!bdf) {
+        throw std::invalid_argument(
+            "tumble::SceneIntegrator: a mechanism (a scene with joints) needs method = "
+            "CvodeMethod::bdf: its state is projected onto the constraints after every step, and "
+            "CVODE projects only with BDF (or use the explicit OdeintIntegrator)");
+      }
+    }
+    const bool project =
+        bdf && ((options.project_quaternions && SceneT::has_constraints) || SceneT::has_joints);
     cvode.projection = project;
     if (cvode.linear_solver == CvodeLinearSolver::band && cvode.upper_bandwidth < 0 &&
         cvode.lower_bandwidth < 0) {
@@ -359,6 +397,9 @@ template <class SceneT> class SceneIntegrator {
   /// Copies the current state (CVODE's vector and the bases) into state_; no allocation.
   const SceneState& sync() {
     state_.y = cvode_.state();
+    if constexpr (SceneT::has_joints) {
+      cvode_.system().project_output(state_.y);
+    }
     const auto b = cvode_.system().bases();
     state_.base.assign(b.begin(), b.end());
     return state_;
