@@ -73,34 +73,101 @@ void joint_responses(const SceneT& scene, SceneWorkspace<SceneT>& ws, Mobile&& m
   });
 }
 
-/// A = J B J^T from the pairs of joint rows that share a body, then its pivoted LDL^T.
+/// A = J B J^T from the pairs of joint rows that share a body, Jacobi-scaled (unit diagonal, so
+/// that the rank test compares like with like whatever the rows' units, m or rad, and the
+/// bodies' masses; a zero diagonal, a row no mobile body can change, stays zero), then factored:
+/// the pivoted LDL^T (dense storage) or the banded one (see JointScratch).
 inline void joint_schur(JointScratch& j) {
-  j.a.setZero();
+  const bool banded = j.bandwidth >= 0;
+  if (banded) {
+    j.band.setZero();
+  } else {
+    j.a.setZero();
+  }
   for (const auto& touches : j.touches) {
     for (const JointScratch::Touch& p : touches) {
       const auto& jp = p.side == 0 ? j.ja : j.jb;
       for (const JointScratch::Touch& q : touches) {
         const auto& xq = q.side == 0 ? j.xa : j.xb;
-        j.a.block(p.row, q.row, p.size, q.size).noalias() +=
-            jp.middleRows(p.row, p.size).lazyProduct(xq.middleCols(q.row, q.size));
+        if (!banded) {
+          j.a.block(p.row, q.row, p.size, q.size).noalias() +=
+              jp.middleRows(p.row, p.size).lazyProduct(xq.middleCols(q.row, q.size));
+        } else if (p.row >= q.row) {  // the lower triangle: rows of p at or below those of q
+          for (int r = 0; r < p.size; ++r) {
+            for (int c = 0; c < q.size && q.row + c <= p.row + r; ++c) {
+              j.band(p.row + r, p.row + r - q.row - c) +=
+                  jp.row(p.row + r).dot(xq.col(q.row + c).transpose());
+            }
+          }
+        }
       }
     }
   }
-  // Jacobi scaling (unit diagonal), so that the rank test compares like with like whatever the
-  // units of the rows (m against rad) and the bodies' masses; a zero diagonal (a row no mobile
-  // body can change) stays zero.
-  for (Eigen::Index i = 0; i < j.a.rows(); ++i) {
-    const double d = j.a(i, i);
+  const Eigen::Index m = j.c.size();
+  for (Eigen::Index i = 0; i < m; ++i) {
+    const double d = banded ? j.band(i, 0) : j.a(i, i);
     j.work(i) = d > 0.0 ? 1.0 / std::sqrt(d) : 0.0;
   }
-  j.a = j.work.asDiagonal() * j.a * j.work.asDiagonal();
-  j.ldlt.compute(j.a);
+  if (!banded) {
+    j.a = j.work.asDiagonal() * j.a * j.work.asDiagonal();
+    j.ldlt.compute(j.a);
+    return;
+  }
+  // Banded L D L^T without pivoting, in place (L below the diagonal of `band`, D in `pivots`):
+  // A is positive semidefinite, so a pivot below the rank tolerance means a dependent row, whose
+  // column of L is then zero (a basic solution, as the dense path's).
+  const Eigen::Index bw = j.bandwidth;
+  for (Eigen::Index i = 0; i < m; ++i) {
+    for (Eigen::Index k = 0; k <= std::min(bw, i); ++k) {
+      j.band(i, k) *= j.work(i) * j.work(i - k);
+    }
+  }
+  j.rank = 0;
+  for (Eigen::Index c = 0; c < m; ++c) {
+    double d = j.band(c, 0);
+    for (Eigen::Index k = std::max<Eigen::Index>(0, c - bw); k < c; ++k) {
+      const double l = j.band(c, c - k);
+      d -= l * l * j.pivots(k);
+    }
+    const bool independent = d > kRankTolerance;
+    j.pivots(c) = independent ? d : 0.0;
+    j.rank += independent ? 1 : 0;
+    for (Eigen::Index r = c + 1; r <= std::min(m - 1, c + bw); ++r) {
+      if (!independent) {
+        j.band(r, r - c) = 0.0;
+        continue;
+      }
+      double v = j.band(r, r - c);
+      for (Eigen::Index k = std::max<Eigen::Index>(0, r - bw); k < c; ++k) {
+        v -= j.band(r, r - k) * j.band(c, c - k) * j.pivots(k);
+      }
+      j.band(r, r - c) = v / d;
+    }
+  }
 }
 
 /// x solving A x = b through the factorization of joint_schur (A = J B J^T, scaled inside): a
 /// basic solution, the dependent rows' unknowns zero. Sets j.rank. x must not alias b.
 inline void joint_solve(JointScratch& j, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   x = j.work.asDiagonal() * b;
+  if (j.bandwidth >= 0) {
+    const Eigen::Index m = x.size(), bw = j.bandwidth;
+    for (Eigen::Index i = 0; i < m; ++i) {  // L y = x
+      for (Eigen::Index k = std::max<Eigen::Index>(0, i - bw); k < i; ++k) {
+        x(i) -= j.band(i, i - k) * x(k);
+      }
+    }
+    for (Eigen::Index i = 0; i < m; ++i) {  // D z = y
+      x(i) = j.pivots(i) > 0.0 ? x(i) / j.pivots(i) : 0.0;
+    }
+    for (Eigen::Index i = m - 1; i >= 0; --i) {  // L^T w = z
+      for (Eigen::Index r = i + 1; r <= std::min(m - 1, i + bw); ++r) {
+        x(i) -= j.band(r, r - i) * x(r);
+      }
+    }
+    x = j.work.asDiagonal() * x;
+    return;
+  }
   x = j.ldlt.transpositionsP() * x;
   j.ldlt.matrixL().solveInPlace(x);
   const auto& d = j.ldlt.vectorD();

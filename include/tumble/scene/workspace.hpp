@@ -11,6 +11,7 @@
 // (core/cache_line.hpp): the scratch one thread writes at every evaluation never shares a line
 // with another thread's data, wherever the heap puts them.
 
+#include <algorithm>
 #include <cstddef>
 #include <stdexcept>
 #include <tuple>
@@ -39,8 +40,23 @@ struct JointScratch {
   Eigen::Matrix<double, Eigen::Dynamic, 6> ja, jb;  ///< the velocity Jacobian blocks, m x 6
   Eigen::Matrix<double, 6, Eigen::Dynamic> xa, xb;  ///< B J^T (the bodies' wrench responses)
   Eigen::VectorXd c, gamma, rhs, lambda, work;      ///< m each
-  Eigen::MatrixXd a;                                ///< J B J^T, m x m
+  /// J B J^T (Jacobi-scaled), in one of two storages chosen from the topology when the
+  /// workspace is made: banded when the joints that share a body have nearby rows (a chain or a
+  /// tree added in order: the cost of a solve then grows linearly with the bodies), dense with a
+  /// pivoted LDL^T otherwise (closed loops, small mechanisms).
+  int bandwidth = -1;      ///< half-bandwidth of the banded storage, -1: dense
+  Eigen::MatrixXd band;    ///< banded: row i holds A(i, i - k) in column k = 0..bandwidth, then L
+  Eigen::VectorXd pivots;  ///< banded: D of L D L^T
+  Eigen::MatrixXd a;       ///< dense: m x m
   Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  /// Switches to the dense storage (a second method for a test, or a band that would be wide).
+  void use_dense() {
+    const Eigen::Index m = c.size();
+    bandwidth = -1;
+    band.resize(0, 0);
+    a.setZero(m, m);
+    ldlt = Eigen::LDLT<Eigen::MatrixXd>(m);
+  }
   Eigen::Matrix<double, 6, Eigen::Dynamic> acc;  ///< per body: [a_c; alpha] (free accelerations)
   Eigen::Matrix<double, 6, Eigen::Dynamic> nu;   ///< per body: [v; omega] (the projection's)
   std::vector<std::vector<Touch>> touches;       ///< per body: the joints on it
@@ -77,8 +93,6 @@ template <class SceneT> class SceneWorkspace {
       j.rhs.setZero(m);
       j.lambda.setZero(m);
       j.work.setZero(m);
-      j.a.setZero(m, m);
-      j.ldlt = Eigen::LDLT<Eigen::MatrixXd>(m);
       j.acc.setZero(6, n);
       j.nu.setZero(6, n);
       j.touches.assign(n, {});
@@ -96,6 +110,21 @@ template <class SceneT> class SceneWorkspace {
           j.joint_b[r] = at.b;
         }
       });
+      int bw = 0;  // the farthest pair of rows that share a body
+      for (const auto& touches : j.touches) {
+        for (const JointScratch::Touch& p : touches) {
+          for (const JointScratch::Touch& q : touches) {
+            bw = std::max(bw, p.row + p.size - 1 - q.row);
+          }
+        }
+      }
+      if (4 * (bw + 1) <= m) {
+        j.bandwidth = bw;
+        j.band.setZero(m, bw + 1);
+        j.pivots.setZero(m);
+      } else {
+        j.use_dense();
+      }
     }
   }
   SceneWorkspace(const SceneWorkspace&) = delete;
