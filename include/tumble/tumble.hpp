@@ -49,6 +49,7 @@
 #include "tumble/orientation/rotation_vector.hpp"
 #include "tumble/scene/accelerations.hpp"
 #include "tumble/scene/assembly.hpp"
+#include "tumble/scene/attitude_only.hpp"
 #include "tumble/scene/chart.hpp"
 #include "tumble/scene/charts.hpp"
 #include "tumble/scene/jacobian.hpp"
