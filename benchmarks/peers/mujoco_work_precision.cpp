@@ -1,7 +1,7 @@
 // tumble_bench: MuJoCo's fixed-step RK4 (mj_step with integrator="RK4") on the problems with a
-// closed form, when MuJoCo is installed (`pip install mujoco`; found by benchmarks/CMakeLists.txt,
-// which defines TUMBLE_BENCH_HAVE_MUJOCO for this file only). Without it the functions below say
-// so and do nothing.
+// closed form, when MuJoCo is installed (`pip install mujoco`; found by peers/peers.cmake, and
+// main/tumble_bench.cmake defines TUMBLE_BENCH_HAVE_MUJOCO for this file only). Without it the
+// functions below say so and do nothing.
 //
 // The model is what a MuJoCo user writes: one body with an <inertial> element (the mass, the
 // centroid at the reference point's offset, the principal inertia), no geoms (no collision work),

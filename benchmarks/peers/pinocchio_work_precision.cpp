@@ -1,6 +1,7 @@
 // tumble_bench: Pinocchio's articulated-body algorithm (aba) inside the same CVODE setup as
-// tumble, when Pinocchio is installed (`pip install pin`; found by main/tumble_bench.cmake, which
-// defines TUMBLE_BENCH_HAVE_PINOCCHIO). Without it the functions below say so and do nothing.
+// tumble, when Pinocchio is installed (`pip install pin`; found by peers/peers.cmake, and
+// main/tumble_bench.cmake defines TUMBLE_BENCH_HAVE_PINOCCHIO for this file only). Without it the
+// functions below say so and do nothing.
 //
 // The model: one body on a free-flyer joint, the joint frame at the body's reference point and
 // the inertia placed with the centroid's lever, so Pinocchio integrates the same body in the same
