@@ -10,7 +10,7 @@
 // thread next: an ensemble's per-thread integrators, freed by the calling thread at the end of a
 // call, became the calling thread's integrator of the next call, in the other thread's heap and
 // next to the blocks that thread was given at the same time. Two threads writing the same line at
-// every step of the right-hand side made calls 3-4x slower (docs/benchmarks.md, "ensembles").
+// every step of the right-hand side made calls 3-4x slower (docs/benchmarks/ensembles.md).
 
 #include <cstddef>
 #include <limits>

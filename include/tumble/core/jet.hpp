@@ -10,7 +10,7 @@
 // Jacobian df/dy (scene/jacobian.hpp). Every operation evaluates at once into a Jet (no
 // expression templates): Eigen's AutoDiffScalar, used here before, builds a nested expression type
 // per formula. With this type the test suite's Jacobian sources compile in 10-14% less time and
-// 15-20% less memory, and the Jacobian costs the same at run time (docs/benchmarks.md).
+// 15-20% less memory, and the Jacobian costs the same at run time (docs/benchmarks/per-call.md).
 //
 // The elementary functions are hidden friends, found by argument-dependent lookup from generic
 // code that writes `using std::sin; sin(x)`, as tumble's does (and Eigen's numext functions).

@@ -16,7 +16,7 @@
 // atol_i + rtol |y_i| (CVODE: in the weighted root-mean-square norm over i; Odeint: in the
 // maximum norm, with |y_i| + h |y'_i| in place of |y_i|). The same tolerances therefore give
 // errors of the same order, not equal errors: compare methods by the error they reach
-// (docs/benchmarks.md), not by their tolerances.
+// (docs/benchmarks/work-precision.md), not by their tolerances.
 //
 // Statistics (IntegratorStatisticsLike): steps, rejected_steps, rhs_evals, chart_switches,
 // projections, events under the same names in both. Errors: integrate/errors.hpp.

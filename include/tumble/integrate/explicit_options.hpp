@@ -61,7 +61,7 @@ struct OdeintOptions {
   /// (SceneWorkspace::stabilize_constraints). Off by default: the quaternions are projected onto
   /// |p| = 1 after every step, and the terms, which act on the Runge-Kutta stages off the
   /// manifold, made Fehlberg 7(8) take 400 steps where 268 sufficed for the same error (tumbling
-  /// body, quasi-velocities, tol 1e-10; docs/benchmarks.md).
+  /// body, quasi-velocities, tol 1e-10; docs/benchmarks/floors.md).
   bool stabilize_quaternions = false;
 };
 
