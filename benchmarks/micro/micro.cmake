@@ -4,7 +4,8 @@
 
 find_package(benchmark QUIET)
 if(benchmark_FOUND)
-  add_executable(tumble_micro micro/micro.cpp micro/baselines.cpp micro/jacobian.cpp)
+  add_executable(tumble_micro micro/micro.cpp micro/baselines.cpp micro/jacobian.cpp
+                              micro/chain.cpp)
   target_link_libraries(tumble_micro PRIVATE tumble::tumble tumble_project_options
                         benchmark::benchmark)
   # Sources include each other by their path under benchmarks/ ("micro/common.hpp").

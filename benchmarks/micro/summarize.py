@@ -37,6 +37,7 @@ mujoco_forward/<ref> (present only when built with Pinocchio or MuJoCo).
 import argparse
 import csv
 import json
+import math
 import os
 import subprocess
 import sys
@@ -47,6 +48,7 @@ QUICK_FILTER = (
     "|^hand_written"
     "|^pinocchio_aba/|^pinocchio_crba_nle_solve/|^mujoco_forward/"
     "|^dense_lu/(EulerParameters|EulerZYX)/"
+    "|^chain_(rhs|projection)/(100|10000)$"
 )
 
 EP = "EulerParameters"
@@ -62,6 +64,7 @@ FLOOR_MAX = 1.2       # tumble's centroidal EP qddot / the hand-written closed f
 PINOCCHIO_MIN = 8.0   # Pinocchio's aba / tumble's EP qddot
 OFFSET_MAX = 2.0      # offset / centroid, per parameterization
 THREE_PARAM_MAX = 2.5  # each 3-parameter set / Euler parameters
+CHAIN_SLOPE_MAX = 1.05  # log-log slope of a mechanism chain's cost, 100 to 10^4 bodies
 
 
 def to_ns(value, unit):
@@ -158,6 +161,12 @@ class Summary:
                 r = self.ratio(f"dense_lu/{p}/{ref}", f"qddot_loads/{p}/{ref}")
                 if r is not None:
                     self.add(g, f"{p} {ref}", r)
+        # 6. mechanisms: a chain's cost against its length (linear: slope 1)
+        g = "mechanisms: log-log slope of a hinged chain's cost, 100 to 10^4 bodies (target <= 1.05)"
+        for what in ["chain_rhs", "chain_projection"]:
+            r = self.ratio(f"{what}/10000", f"{what}/100")
+            self.add(g, what, None if r is None else math.log(r) / math.log(100.0), "<=",
+                     CHAIN_SLOPE_MAX)
         return self
 
 
