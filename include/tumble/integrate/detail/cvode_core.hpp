@@ -39,6 +39,7 @@
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include "tumble/core/band_matrix.hpp"
+#include "tumble/core/cache_line.hpp"
 #include "tumble/integrate/detail/cvode_flags.hpp"
 #include "tumble/integrate/detail/cvode_report.hpp"
 #include "tumble/integrate/detail/sundials.hpp"
@@ -556,7 +557,7 @@ template <class System> class CvodeCore {
   int root_count_ = 0;
   ErrorCapture errors_;
   CallbackReport report_;
-  std::vector<int> root_info_;
+  CacheLineVector<int> root_info_;  ///< written at each root found: lines of its own
   CvodeStatistics accumulated_{};
   long roots_found_ = 0;
   long reinits_ = 0;
