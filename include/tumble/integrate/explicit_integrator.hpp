@@ -32,7 +32,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <initializer_list>
 #include <span>
 #include <stdexcept>
@@ -45,6 +44,7 @@
 
 #include "tumble/core/cache_line.hpp"
 #include "tumble/core/errors.hpp"
+#include "tumble/core/format.hpp"
 #include "tumble/integrate/detail/explicit_numerics.hpp"
 #include "tumble/integrate/detail/odeint_stepper.hpp"
 #include "tumble/integrate/detail/state_check.hpp"
@@ -288,11 +288,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   }
   std::span<const Matrix3<double>> bases() const { return base_; }
 
-  static std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return buf;
-  }
+  static std::string num(double v) { return detail::format_double(v); }
 
   static OdeintOptions checked(const SceneT& scene, const OdeintOptions& o) {
     validate(o, scene.size());
