@@ -17,6 +17,8 @@
 //    equal to the serial loop's, including the run a thread does right after a failed one; their
 //    sum, by fold_runs and by Ensemble::fold in blocks, equal to the serial loop's in run order;
 //  - per-run scenes (dispersed inertia) against the same serial loop and the closed form;
+//  - the integrators' per-step buffers on whole cache lines (Odeint's dynamic state, CVODE's
+//    vectors and their clones);
 //  - no allocation per step (operator new counted, tests/integrate/alloc_counter.hpp), and fewer
 //    per run than making an integrator.
 
@@ -27,9 +29,11 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include <Eigen/Core>
@@ -41,6 +45,7 @@
 #include "support/scene_fixtures.hpp"
 #include "support/torque_free.hpp"
 #include "tumble/body/rigid_body.hpp"
+#include "tumble/core/cache_line.hpp"
 #include "tumble/ensemble/variants.hpp"
 #include "tumble/force/user_force.hpp"
 #include "tumble/integrate/explicit_integrator.hpp"
@@ -131,6 +136,11 @@ const auto make_dopri = [](const SceneT& s, double t0, const SceneState& y0) {
   o.method = tumble::OdeintMethod::dopri5;
   return Odeint(s, t0, y0, o);
 };
+// The size known only at run time: the state and Odeint's stage buffers are vectors on cache
+// lines of their own (detail::OdeintState), where the fixed size keeps them in the integrator.
+const auto make_odeint_dynamic = [](const SceneT& s, double t0, const SceneState& y0) {
+  return tumble::OdeintIntegrator<SceneT>(s, t0, y0, odeint_options());
+};
 // BDF keeps more between steps (the Newton iteration, the exact Jacobian and when to update it):
 // all of it reset() must not carry from one run into the next.
 const auto make_cvode_bdf = [](const SceneT& s, double t0, const SceneState& y0) {
@@ -219,6 +229,9 @@ bool mentions(const std::string& what, const std::string& part) {
 TEST_CASE("ensemble: runs equal a serial loop to the bit, whatever the threads",
           "[ensemble][ensemble]") {
   SECTION("OdeintIntegrator, Fehlberg 7(8)") { check_thread_independence(make_odeint, 16); }
+  SECTION("OdeintIntegrator, Fehlberg 7(8), N = Eigen::Dynamic") {
+    check_thread_independence(make_odeint_dynamic, 8);
+  }
   SECTION("OdeintIntegrator, Fehlberg 7(8), one output") {
     check_thread_independence(make_odeint, 8, {kEnd});
   }
@@ -505,4 +518,42 @@ TEST_CASE("ensemble: no allocation per step, less per run than an integrator",
   INFO(first << " allocations in the first call, " << second << " in the second");
   CHECK(second <= 1 + 4 * per_run);
   CHECK(second < first);
+}
+
+// What an integrator writes at every step, where it is on the heap, is whole cache lines of its
+// own (core/cache_line.hpp): two threads' integrators never write one line, wherever the heap
+// puts them (docs/benchmarks.md, "calls in a row").
+TEST_CASE("ensemble: what the integrators write at every step is on cache lines of their own",
+          "[ensemble][ensemble]") {
+  const auto on_lines = [](const void* p) {
+    return reinterpret_cast<std::uintptr_t>(p) % tumble::kCacheLine == 0;
+  };
+  // OdeintIntegrator with N = Eigen::Dynamic: its state vectors, and Odeint's stage buffers of the
+  // same type.
+  static_assert(std::is_same_v<tumble::detail::OdeintState<Eigen::Dynamic>::allocator_type,
+                               tumble::CacheLineAllocator<double>>);
+  tumble::detail::OdeintState<Eigen::Dynamic> x(5, 0.0);
+  CHECK(on_lines(x.data()));
+  // CVODE: the vector tumble gives CVodeInit and every clone CVODE makes of it (the Nordsieck
+  // array, the weights, the solvers' work vectors), freed by SUNDIALS' own destroy.
+  for (const bool fused : {false, true}) {
+    tumble::detail::ErrorCapture capture;
+    const tumble::detail::ContextHandle ctx = tumble::detail::make_context(capture);
+    const tumble::detail::NVectorHandle y =
+        tumble::detail::make_serial_vector(13, ctx.get(), fused);
+    CHECK(on_lines(N_VGetArrayPointer(y.get())));
+    CHECK(N_VGetLength(y.get()) == 13);
+    const tumble::detail::NVectorHandle clone(N_VClone(y.get()));
+    REQUIRE(clone != nullptr);
+    CHECK(on_lines(N_VGetArrayPointer(clone.get())));
+    const tumble::detail::NVectorHandle grandchild(N_VClone(clone.get()));
+    REQUIRE(grandchild != nullptr);
+    CHECK(on_lines(N_VGetArrayPointer(grandchild.get())));
+    N_VConst(1.5, grandchild.get());
+    CHECK(N_VMaxNorm(grandchild.get()) == 1.5);
+  }
+  const Tumbling t(1);
+  tumble::SceneIntegrator<SceneT> cvode = make_cvode_bdf(t.scene, 0.0, t.states[0]);
+  cvode.advance(1.0);
+  CHECK(on_lines(cvode.cvode().state().data()));
 }

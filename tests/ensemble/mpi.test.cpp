@@ -11,6 +11,8 @@
 //    integrate_variants on one process, a failing scene reported with its index;
 //  - MpiEnsemble::fold in blocks bitwise equal to Ensemble::fold and to fold_runs over the
 //    one-process results in run order (a non-associative floating-point sum), errors included;
+//  - statistics(): the runs and failures over all ranks on every rank, each rank's runs, this
+//    rank's runs, failures and threads, after integrate and fold;
 //  - misuse: no MPI (made before MPI_Init), bad times, block 0 and run counts that differ between
 //    ranks throw on every rank instead of hanging.
 
@@ -197,6 +199,55 @@ TEST_CASE("mpi: failing runs reach rank 0 with their index and message, the othe
       }
     }
   }
+}
+
+TEST_CASE("mpi: statistics say the ranks, each rank's runs and the failures, on every rank",
+          "[ensemble][mpi]") {
+  const Tumbling t;
+  const auto initial = [&](std::size_t i) {  // runs 1 and 11 fail: one on each rank of 2
+    if (i == 1 || i == 11) {
+      throw std::runtime_error("no initial state");
+    }
+    return t.initial(i);
+  };
+  const tumble::MpiEnsemble ensemble(t.scene, make, {.threads = 2});
+  CHECK(ensemble.statistics().runs == 0);  // no call yet
+  CHECK(ensemble.statistics().runs_per_rank.empty());
+  const std::size_t runs = 13;
+  const auto check = [&](std::size_t failed, const char* call) {
+    INFO(call << ", rank " << ensemble.rank() << " of " << ensemble.ranks());
+    const tumble::MpiEnsembleStatistics st = ensemble.statistics();
+    CHECK(st.runs == runs);
+    CHECK(st.failed == failed);  // over all ranks, on every rank
+    CHECK(st.ranks == ensemble.ranks());
+    REQUIRE(st.runs_per_rank.size() == static_cast<std::size_t>(ensemble.ranks()));
+    std::size_t sum = 0;
+    for (const std::size_t n : st.runs_per_rank) {
+      sum += n;
+    }
+    CHECK(sum == runs);
+    CHECK(st.this_rank.runs == st.runs_per_rank[static_cast<std::size_t>(ensemble.rank())]);
+    // This rank's failures: those of its runs (runs_of_rank, one block of 13 for integrate).
+    std::size_t mine = 0;
+    const auto [b, e] = ensemble.runs_of_rank(runs, ensemble.rank());
+    for (const std::size_t i : {std::size_t{1}, std::size_t{11}}) {
+      mine += (failed > 0 && i >= b && i < e) ? 1 : 0;
+    }
+    if (std::string(call) == "integrate") {
+      CHECK(st.this_rank.runs == e - b);
+      CHECK(st.this_rank.failed == mine);
+    }
+    CHECK(st.this_rank.threads == tumble::Ensemble(t.scene, make, {.threads = 2}).threads());
+    CHECK(st.this_rank.threads_used >= 1);
+    CHECK(st.this_rank.threads_used <= st.this_rank.threads);
+  };
+  (void)ensemble.integrate<Final>(runs, initial, 0.0, kTimes, t.observer());
+  check(2, "integrate");
+  (void)ensemble.fold<Final>(runs, initial, 0.0, kTimes, t.observer(), 0.0, add, 4);
+  check(2, "fold");
+  const auto fine = [&](std::size_t i) { return t.initial(i); };
+  (void)ensemble.integrate<Final>(runs, fine, 0.0, kTimes, t.observer());
+  check(0, "integrate");
 }
 
 TEST_CASE("mpi: per-run scenes over the ranks equal integrate_variants to the bit",

@@ -734,7 +734,7 @@ TEST_CASE("too much work: IntegrationError names CV_TOO_MUCH_WORK, the limit and
     CHECK(e.time() > 0.0);
     CHECK(e.time() < 10.0);
     CHECK(e.time() == cvode.time());
-    CHECK(what.find("t = " + tumble::detail::format_number(e.time())) != std::string::npos);
+    CHECK(what.find("t = " + tumble::detail::format_double(e.time())) != std::string::npos);
     CHECK(!e.cause());
   }
 }

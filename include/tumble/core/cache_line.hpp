@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <limits>
 #include <new>
+#include <vector>
 
 namespace tumble {
 
@@ -54,5 +55,9 @@ template <class T, class U>
 bool operator==(const CacheLineAllocator<T>&, const CacheLineAllocator<U>&) noexcept {
   return true;
 }
+
+/// A std::vector on whole cache lines of its own: for buffers one thread writes at every step or
+/// evaluation (a workspace's scratch, an integrator's state and stage vectors).
+template <class T> using CacheLineVector = std::vector<T, CacheLineAllocator<T>>;
 
 }  // namespace tumble

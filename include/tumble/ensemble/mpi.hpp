@@ -26,6 +26,9 @@
 //   every rank: a failing run never stops or hangs the others. A failure outside any run (a
 //   thread that cannot be started, memory) or arguments that differ between ranks make every
 //   rank throw, never one rank alone.
+// - statistics() says what the last call ran, as Ensemble::statistics() does: the runs and the
+//   failed ones over all ranks (the same on every rank), the ranks and each rank's runs, and this
+//   rank's part (its runs, failures, threads and the threads that took part).
 
 #include <algorithm>
 #include <climits>
@@ -230,10 +233,12 @@ std::vector<RunOutcome<R>> mpi_gather(const MpiComm& c, std::size_t first, std::
 /// Runs [first, last) over the ranks: run(b, e, outcomes) does this rank's runs [b, e) on its
 /// threads, an outcome each, catching each run's failure; the outcomes are gathered at rank 0
 /// (empty elsewhere). Every rank makes the same collective calls whatever failed: a failure
-/// outside the runs on any rank makes every rank throw.
+/// outside the runs on any rank makes every rank throw. Adds this rank's failed runs to
+/// `failed_here` and all ranks' to `failed_all` (in the reduction the failure check makes anyway).
 template <class R, class Run>
 std::vector<RunOutcome<R>> mpi_run_block(const MpiComm& c, std::size_t first, std::size_t last,
-                                         Run&& run) {
+                                         Run&& run, std::size_t& failed_here,
+                                         std::size_t& failed_all) {
   const auto [b, e] = mpi_block(last - first, c.rank, c.ranks);
   std::vector<RunOutcome<R>> mine(e - b);
   std::string fault;
@@ -244,9 +249,17 @@ std::vector<RunOutcome<R>> mpi_run_block(const MpiComm& c, std::size_t first, st
   } catch (...) {
     fault = "an exception not derived from std::exception";
   }
-  int failed = fault.empty() ? 0 : 1, any = 0;
-  mpi_check(MPI_Allreduce(&failed, &any, 1, MPI_INT, MPI_MAX, c.comm), "MPI_Allreduce");
-  if (any != 0) {
+  std::uint64_t failed_runs = 0;
+  for (const RunOutcome<R>& o : mine) {
+    failed_runs += o.failed() ? 1 : 0;
+  }
+  // Summed over the ranks: the ranks that failed outside their runs, and the failed runs.
+  std::uint64_t local[2] = {fault.empty() ? 0u : 1u, failed_runs}, sum[2] = {0, 0};
+  mpi_check(MPI_Allreduce(local, sum, 2, MPI_UINT64_T, MPI_SUM, c.comm), "MPI_Allreduce");
+  const bool failed = !fault.empty();
+  failed_here += static_cast<std::size_t>(failed_runs);
+  failed_all += static_cast<std::size_t>(sum[1]);
+  if (sum[0] != 0) {
     throw std::runtime_error(failed ? "tumble::MpiEnsemble: rank " + std::to_string(c.rank) +
                                           " failed outside its runs: " + fault
                                     : "tumble::MpiEnsemble: another rank failed outside its "
@@ -256,6 +269,18 @@ std::vector<RunOutcome<R>> mpi_run_block(const MpiComm& c, std::size_t first, st
 }
 
 }  // namespace detail
+
+/// What the last call of an MpiEnsemble (integrate or fold) ran: EnsembleStatistics over the
+/// ranks.
+struct MpiEnsembleStatistics {
+  std::size_t runs = 0;    ///< runs done, over all ranks
+  std::size_t failed = 0;  ///< of which failed (a RunError), over all ranks; the same on each rank
+  int ranks = 0;           ///< the ranks the runs were spread over (MpiEnsemble::ranks())
+  std::vector<std::size_t> runs_per_rank;  ///< the runs each rank did, in rank order
+  /// This rank's part: its runs, its failed runs, its threads (Ensemble::threads()) and those of
+  /// them that did at least one run.
+  EnsembleStatistics this_rank;
+};
 
 /// An Ensemble over the ranks of an MPI communicator (default MPI_COMM_WORLD). The user
 /// initializes MPI before constructing one and finalizes it after the last call.
@@ -286,8 +311,10 @@ template <class SceneT, class MakeIntegrator> class MpiEnsemble {
     // One gather of all the runs: runs (at least 1) results at once.
     detail::mpi_agree<R>(comm_, runs, std::max<std::size_t>(runs, 1), t0, times);
     std::vector<RunOutcome<R>> out;
+    MpiEnsembleStatistics stats = started(runs);
     local_.with_pool(
-        [&](Pool& pool) { out = run_block<R>(pool, 0, runs, initial, t0, times, observe); });
+        [&](Pool& pool) { out = run_block<R>(pool, 0, runs, initial, t0, times, observe, stats); });
+    stats_ = std::move(stats);
     return out;
   }
 
@@ -302,11 +329,12 @@ template <class SceneT, class MakeIntegrator> class MpiEnsemble {
                      Observer&& observe, T init, Fold&& combine, std::size_t block = 4096) const {
     detail::mpi_agree<R>(comm_, runs, block, t0, times);
     FoldedRuns<T> folded{std::move(init), {}, 0};
+    MpiEnsembleStatistics stats = started(runs);
     local_.with_pool([&](Pool& pool) {  // one integrator per thread for all blocks
       for (std::size_t first = 0; first < runs; first += block) {
         const std::size_t last = std::min(runs, first + block);
         std::vector<RunOutcome<R>> out =
-            run_block<R>(pool, first, last, initial, t0, times, observe);
+            run_block<R>(pool, first, last, initial, t0, times, observe, stats);
         for (std::size_t k = 0; k < out.size(); ++k) {  // empty except at rank 0
           if (out[k].ok()) {
             folded.value = combine(std::move(folded.value), first + k, out[k].value());
@@ -317,6 +345,7 @@ template <class SceneT, class MakeIntegrator> class MpiEnsemble {
         }
       }
     });
+    stats_ = std::move(stats);
     return folded;
   }
 
@@ -330,26 +359,53 @@ template <class SceneT, class MakeIntegrator> class MpiEnsemble {
   [[nodiscard]] MPI_Comm communicator() const { return comm_.comm; }
   [[nodiscard]] const SceneT& scene() const { return local_.scene(); }
   [[nodiscard]] const EnsembleOptions& options() const { return local_.options(); }
+  /// What the last call that finished ran (zeros before the first; a call that threw leaves the
+  /// previous one's).
+  [[nodiscard]] MpiEnsembleStatistics statistics() const { return stats_; }
 
  private:
   using Slot = typename Local::Slot;
   using Pool = typename Local::Pool;
 
-  /// Runs [first, last) over the ranks, this rank's part on its threads (detail::mpi_run_block).
+  /// The statistics of a call of `runs` runs, before any run.
+  MpiEnsembleStatistics started(std::size_t runs) const {
+    MpiEnsembleStatistics s;
+    s.runs = runs;
+    s.ranks = comm_.ranks;
+    s.runs_per_rank.assign(static_cast<std::size_t>(comm_.ranks), 0);
+    s.this_rank.threads = local_.threads();
+    return s;
+  }
+
+  /// Runs [first, last) over the ranks, this rank's part on its threads (detail::mpi_run_block),
+  /// counted into stats.
   template <class R, class Initial, class Times, class Observer>
   std::vector<RunOutcome<R>> run_block(Pool& pool, std::size_t first, std::size_t last,
                                        Initial& initial, double t0, const Times& times,
-                                       Observer& observe) const {
+                                       Observer& observe, MpiEnsembleStatistics& stats) const {
+    for (int r = 0; r < comm_.ranks; ++r) {
+      const auto [b, e] = detail::mpi_block(last - first, r, comm_.ranks);
+      stats.runs_per_rank[static_cast<std::size_t>(r)] += e - b;
+      if (r == comm_.rank) {
+        stats.this_rank.runs += e - b;
+      }
+    }
     return detail::mpi_run_block<R>(
-        comm_, first, last, [&](std::size_t b, std::size_t e, std::vector<RunOutcome<R>>& mine) {
-          pool.for_each(b, e, [&](Slot& integrator, std::size_t i) {
+        comm_, first, last,
+        [&](std::size_t b, std::size_t e, std::vector<RunOutcome<R>>& mine) {
+          const int used = pool.for_each(b, e, [&](Slot& integrator, std::size_t i) {
             mine[i - b] = local_.template run<R>(integrator, i, initial, t0, times, observe);
           });
-        });
+          stats.this_rank.threads_used = std::max(stats.this_rank.threads_used, used);
+        },
+        stats.this_rank.failed, stats.failed);
   }
 
   Local local_;
   detail::MpiComm comm_;
+  /// The last call's; calls are collective, made by one thread of each rank (MPI's rule for a
+  /// communicator), so no lock.
+  mutable MpiEnsembleStatistics stats_;
 };
 
 /// integrate_variants (variants.hpp: a scene per run) over the ranks of `comm`: run i builds its
@@ -367,12 +423,15 @@ std::vector<RunOutcome<R>> mpi_integrate_variants(std::size_t runs, MakeScene&& 
   detail::mpi_agree<R>(c, runs, std::max<std::size_t>(runs, 1), t0, times);
   struct NoWorker {};
   RunPool<NoWorker> pool(options);
+  std::size_t failed_here = 0, failed_all = 0;  // not reported: the outcomes say it
   return detail::mpi_run_block<R>(
-      c, 0, runs, [&](std::size_t b, std::size_t e, std::vector<RunOutcome<R>>& mine) {
+      c, 0, runs,
+      [&](std::size_t b, std::size_t e, std::vector<RunOutcome<R>>& mine) {
         pool.for_each(b, e, [&](NoWorker&, std::size_t i) {
           mine[i - b] = detail::variant_run<R>(i, make_scene, make_integrator, t0, times, observe);
         });
-      });
+      },
+      failed_here, failed_all);
 }
 
 }  // namespace tumble

@@ -45,6 +45,7 @@
 #include <Eigen/Core>
 
 #include "tumble/core/errors.hpp"
+#include "tumble/core/format.hpp"
 #include "tumble/integrate/common.hpp"
 #include "tumble/integrate/detail/explicit_numerics.hpp"
 #include "tumble/integrate/errors.hpp"

@@ -23,13 +23,14 @@
 
 #include <cmath>
 #include <concepts>
-#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <string>
 #include <variant>
 
 #include <Eigen/Core>
+
+#include "tumble/core/format.hpp"
 
 namespace tumble {
 
@@ -70,12 +71,6 @@ concept IntegratorOptionsLike = requires(O& o) {
 };
 
 namespace detail {
-
-inline std::string format_double(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
-}
 
 /// Validates the shared options of `who` (e.g. "tumble::OdeintOptions") for a state of size n
 /// (n < 0: unknown, the size of a per-entry atol is not checked); throws std::invalid_argument

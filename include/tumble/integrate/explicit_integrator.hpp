@@ -6,9 +6,11 @@
 //
 // The state is Odeint's std::array<double, N> when the scene's size N is a template argument
 // (checked against scene.size()), a std::vector otherwise, viewed through Eigen::Map; nothing is
-// allocated per step (events' user callables aside). Odeint supplies the steppers and the
-// step-size controller (try_step); the loop is here (docs/integrators.md), and between two
-// accepted steps it does what a one-step method can do without a restart:
+// allocated per step (events' user callables aside). What a step writes on the heap (a dynamic
+// state, Odeint's stage buffers, the chart roots) is whole cache lines of its own
+// (core/cache_line.hpp): two threads' integrators never write one line. Odeint supplies the
+// steppers and the step-size controller (try_step); the loop is here (docs/integrators.md), and
+// between two accepted steps it does what a one-step method can do without a restart:
 // - Three-parameter charts: a trial step that ends deeper in a switch zone than half its width
 //   is rejected and retried shorter; an accepted step that ends inside the zone is followed by
 //   recenter_charts (scene/charts.hpp: re-centering, MRP's shadow set), counted per body.
@@ -30,7 +32,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <initializer_list>
 #include <span>
 #include <stdexcept>
@@ -41,7 +42,9 @@
 
 #include <Eigen/Core>
 
+#include "tumble/core/cache_line.hpp"
 #include "tumble/core/errors.hpp"
+#include "tumble/core/format.hpp"
 #include "tumble/integrate/detail/explicit_numerics.hpp"
 #include "tumble/integrate/detail/odeint_stepper.hpp"
 #include "tumble/integrate/detail/state_check.hpp"
@@ -79,13 +82,12 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     ws_.stabilize_constraints = options_.stabilize_quaternions;
     const int n = scene.size();
     if constexpr (N == Eigen::Dynamic) {
-      for (State* v : {&x_, &dxdt_, &x_old_, &dxdt_old_, &x_new_, &dxdt_new_, &x_tmp_}) {
+      for (State* v : {&x_, &dxdt_, &x_old_, &dxdt_old_, &x_new_, &dxdt_new_, &x_tmp_, &corr_}) {
         v->assign(static_cast<std::size_t>(n), 0.0);
       }
     }
-    corr_.setZero(n);
-    g_.setZero(static_cast<Eigen::Index>(scene.chart_bodies().size()));
-    g0_.setZero(g_.size());
+    g_.assign(scene.chart_bodies().size(), 0.0);
+    g0_.assign(g_.size(), 0.0);
     scene.for_each_entry([&](const auto& e) {
       using Body = std::remove_cvref_t<decltype(e.body)>;
       if constexpr (Chart<typename Body::Param>::has_singularity) {
@@ -239,8 +241,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
         out_state_.y = map(x_tmp_);
         if constexpr (SceneT::has_constraints) {
           Eigen::VectorXd no_error;  // empty: nothing to project but the state
-          tumble::project(*scene_, out_state_.y, corr_, no_error);
-          out_state_.y += corr_;
+          tumble::project(*scene_, out_state_.y, map(corr_), no_error);
+          out_state_.y += map(corr_);
         }
         out_state_.base = base_;
         if constexpr (SceneT::has_joints) {
@@ -290,11 +292,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   }
   std::span<const Matrix3<double>> bases() const { return base_; }
 
-  static std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", v);
-    return buf;
-  }
+  static std::string num(double v) { return detail::format_double(v); }
 
   static OdeintOptions checked(const SceneT& scene, const OdeintOptions& o) {
     validate(o, scene.size());
@@ -379,8 +377,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     bool changed = false;
     if constexpr (SceneT::has_constraints) {
       Eigen::VectorXd no_error;  // empty: no local error estimate to project (no allocation)
-      tumble::project(*scene_, map(x_), corr_, no_error);
-      map(x_) += corr_;
+      tumble::project(*scene_, map(x_), map(corr_), no_error);
+      map(x_) += map(corr_);
       ++stats_.projections;
       changed = true;
     }
@@ -407,10 +405,10 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       }
     }
     double fraction = 1.0;
-    if (g_.size() > 0) {
+    if (!g_.empty()) {
       chart_roots(*scene_, map(x), g_);
-      for (Eigen::Index i = 0; i < g_.size(); ++i) {
-        const double deep = deep_[static_cast<std::size_t>(i)];
+      for (std::size_t i = 0; i < g_.size(); ++i) {
+        const double deep = deep_[i];
         if (!(g_[i] >= deep)) {
           chart_roots(*scene_, map(x_), g0_);
           const double f = (g0_[i] - 0.5 * deep) / (g0_[i] - g_[i]);
@@ -421,7 +419,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     return fraction;
   }
 
-  void events_at(double t, const State& x, std::vector<double>& g) const {
+  void events_at(double t, const State& x, CacheLineVector<double>& g) const {
     const auto& events = scene_->events();
     if (events.empty()) {
       return;
@@ -700,17 +698,18 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   SceneWorkspace<SceneT> ws_;
   Stepper stepper_;
   State x_{}, dxdt_{}, x_old_{}, dxdt_old_{}, x_new_{}, dxdt_new_{}, x_tmp_{};
-  bool deriv_valid_ = false;             ///< dxdt_ is x' at x_
-  bool stage_not_finite_ = false;        ///< some stage of the current trial step was not finite
-  Run run_;                              ///< this advance (or output interval): the step budget
-  Run window_;                           ///< the attempts since the last stiffness test
-  double t_ = 0.0, h_ = 0.0;             ///< time, next step size
-  Vec corr_;                             ///< the projection's correction
-  Eigen::VectorXd g_, g0_;               ///< chart roots at a step's end and start
-  std::vector<double> deep_;             ///< per chart body: roots below this reject a step
-  std::vector<double> ev_old_, ev_new_;  ///< event functions at the step's start and end
+  bool deriv_valid_ = false;        ///< dxdt_ is x' at x_
+  bool stage_not_finite_ = false;   ///< some stage of the current trial step was not finite
+  Run run_;                         ///< this advance (or output interval): the step budget
+  Run window_;                      ///< the attempts since the last stiffness test
+  double t_ = 0.0, h_ = 0.0;        ///< time, next step size
+  State corr_{};                    ///< the projection's correction
+  CacheLineVector<double> g_, g0_;  ///< chart roots at a step's end and start
+  std::vector<double> deep_;        ///< per chart body: roots below this reject a step
+  CacheLineVector<double> ev_old_;  ///< event functions at the step's start
+  CacheLineVector<double> ev_new_;  ///< and at its end
   ChartBases base_;
-  std::vector<long> switches_;
+  CacheLineVector<long> switches_;
   SceneState event_state_, state_, out_state_;
   OdeintStatistics stats_;
 };

@@ -11,7 +11,6 @@
 // functions" and "Optional output functions".
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -20,6 +19,7 @@
 
 #include <Eigen/Core>
 
+#include "tumble/core/format.hpp"
 #include "tumble/integrate/common.hpp"
 
 namespace tumble {
@@ -131,11 +131,7 @@ inline void validate(const CvodeOptions& o, int n, double t0) {
   auto fail = [](const std::string& what) {
     throw std::invalid_argument("tumble::CvodeOptions: " + what);
   };
-  auto num = [](double x) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", x);
-    return std::string(buf);
-  };
+  const auto num = detail::format_double;
   if (n <= 0) {
     fail("the system size must be > 0 (got " + std::to_string(n) + ")");
   }

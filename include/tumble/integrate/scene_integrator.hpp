@@ -28,6 +28,7 @@
 #include <utility>
 #include <vector>
 
+#include "tumble/core/cache_line.hpp"
 #include "tumble/core/errors.hpp"
 #include "tumble/integrate/common.hpp"
 #include "tumble/integrate/cvode.hpp"
@@ -261,10 +262,10 @@ template <class SceneT> class SceneSystem {
   const SceneT* scene_;
   SceneWorkspace<SceneT> ws_;
   std::optional<Preconditioner> preconditioner_;
-  ChartBases base_;             ///< the discrete part of the state
-  std::vector<long> switches_;  ///< per body
-  SceneState event_state_;      ///< what event actions see and change
-  long events_ = 0;             ///< user events located
+  ChartBases base_;                 ///< the discrete part of the state
+  CacheLineVector<long> switches_;  ///< per body; on lines of its own (written at switches)
+  SceneState event_state_;          ///< what event actions see and change
+  long events_ = 0;                 ///< user events located
 };
 
 }  // namespace detail

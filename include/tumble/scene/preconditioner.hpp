@@ -15,6 +15,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include "tumble/core/cache_line.hpp"
 #include "tumble/core/errors.hpp"
 #include "tumble/core/math.hpp"
 #include "tumble/scene/jacobian.hpp"
@@ -46,7 +47,7 @@ class BlockPreconditioner<Scene<Bodies<B...>, Loads<L...>, Form>> {
         size_(scene.body_count(), 0) {
     scene.for_each_entry([&](const auto& e) {
       using Body = std::remove_cvref_t<decltype(e.body)>;
-      auto& blocks = std::get<std::vector<Block<Body>>>(blocks_);
+      auto& blocks = std::get<CacheLineVector<Block<Body>>>(blocks_);
       blocks.emplace_back();
       blocks.back().offset = e.offset;
       for (int r = 0; r < Block<Body>::m; ++r) {
@@ -58,7 +59,7 @@ class BlockPreconditioner<Scene<Bodies<B...>, Loads<L...>, Form>> {
     // Pointers last: the vectors of blocks no longer grow.
     scene.for_each_entry([&](const auto& e) {
       using Body = std::remove_cvref_t<decltype(e.body)>;
-      data_[e.id] = std::get<std::vector<Block<Body>>>(blocks_)[e.local].j.data();
+      data_[e.id] = std::get<CacheLineVector<Block<Body>>>(blocks_)[e.local].j.data();
     });
   }
   BlockPreconditioner(const BlockPreconditioner&) = delete;
@@ -128,11 +129,11 @@ class BlockPreconditioner<Scene<Bodies<B...>, Loads<L...>, Form>> {
     }
   }
 
-  std::tuple<std::vector<Block<B>>...> blocks_;
-  std::vector<int> owner_;     ///< per state entry: its body
-  std::vector<double*> data_;  ///< per body: its J_kk
-  std::vector<int> start_;     ///< per body: its offset
-  std::vector<int> size_;      ///< per body: its block size
+  std::tuple<CacheLineVector<Block<B>>...> blocks_;  ///< written at each setup: lines of their own
+  std::vector<int> owner_;                           ///< per state entry: its body
+  std::vector<double*> data_;                        ///< per body: its J_kk
+  std::vector<int> start_;                           ///< per body: its offset
+  std::vector<int> size_;                            ///< per body: its block size
 };
 
 }  // namespace tumble

@@ -178,9 +178,7 @@ class Scene<Bodies<B...>, Loads<L...>, Form, Joints<J...>> {
   template <class Joint> using AttachedJoint = detail::AttachedJoint<Joint>;
   /// Per body type, the kinematics its loads read (the layout of a workspace), in cache lines of
   /// their own (written at every evaluation, by one thread: core/cache_line.hpp).
-  using KinematicsStorage =
-      std::tuple<std::vector<BodyKinematics<double, B::reference>,
-                             CacheLineAllocator<BodyKinematics<double, B::reference>>>...>;
+  using KinematicsStorage = std::tuple<CacheLineVector<BodyKinematics<double, B::reference>>...>;
   /// The index of a body type in Bodies<B...> (its group).
   template <class Body> static constexpr std::size_t group_of = detail::index_of<Body, B...>();
 

@@ -154,10 +154,9 @@ template <class SceneT> class SceneWorkspace {
 
  private:
   typename SceneT::KinematicsStorage kinematics_;
-  template <class T> using Lines = std::vector<T, CacheLineAllocator<T>>;
-  Lines<Wrench<double>> wrench_;
-  Lines<const KinematicsView<double>*> views_;
-  Lines<Matrix<double, 7, 6>> gain_;
+  CacheLineVector<Wrench<double>> wrench_;
+  CacheLineVector<const KinematicsView<double>*> views_;
+  CacheLineVector<Matrix<double, 7, 6>> gain_;
   JointScratch joints_;
 };
 

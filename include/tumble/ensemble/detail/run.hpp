@@ -5,7 +5,6 @@
 
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <exception>
 #include <stdexcept>
 #include <string>
@@ -13,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "tumble/core/format.hpp"
 #include "tumble/ensemble/outcome.hpp"
 #include "tumble/scene/state.hpp"
 
@@ -49,11 +49,9 @@ template <class Times> void check_output_times(double t0, const Times& times) {
   for (const auto& value : times) {
     const double t = static_cast<double>(value);
     if (!std::isfinite(t) || t < last) {
-      char buf[96];
-      std::snprintf(buf, sizeof buf, "%.17g after %.17g", t, last);
       throw std::invalid_argument("tumble::Ensemble: the output times must be finite, "
                                   "non-decreasing and not before the start time; found " +
-                                  std::string(buf));
+                                  format_double(t) + " after " + format_double(last));
     }
     last = t;
   }

@@ -39,6 +39,8 @@
 #include <sunnonlinsol/sunnonlinsol_fixedpoint.h>
 
 #include "tumble/core/band_matrix.hpp"
+#include "tumble/core/cache_line.hpp"
+#include "tumble/core/format.hpp"
 #include "tumble/integrate/detail/cvode_flags.hpp"
 #include "tumble/integrate/detail/cvode_report.hpp"
 #include "tumble/integrate/detail/sundials.hpp"
@@ -98,7 +100,7 @@ template <class System> class CvodeCore {
   double step() {
     if (options_.stop_time && t_ >= *options_.stop_time) {
       throw std::logic_error("tumble::Cvode::step: the stop time " +
-                             format_number(*options_.stop_time) + " has been reached");
+                             format_double(*options_.stop_time) + " has been reached");
     }
     // With CV_ONE_STEP, tout only gives the direction and, on the first step, an upper bound
     // for CVODE's estimate of the initial step.
@@ -114,20 +116,20 @@ template <class System> class CvodeCore {
     for (const auto& value : times) {  // validate every output time before integrating
       const double tk = static_cast<double>(value);
       if (!std::isfinite(tk)) {
-        throw std::invalid_argument("tumble::Cvode::integrate: output time " + format_number(tk) +
+        throw std::invalid_argument("tumble::Cvode::integrate: output time " + format_double(tk) +
                                     " is not finite");
       }
       if (first ? tk < t_ : tk <= previous) {
         throw std::invalid_argument(
             "tumble::Cvode::integrate: output times must be increasing and not behind the "
             "current time " +
-            format_number(t_) + " (got " + format_number(tk) + " after " + format_number(previous) +
+            format_double(t_) + " (got " + format_double(tk) + " after " + format_double(previous) +
             ")");
       }
       if (options_.stop_time && tk > *options_.stop_time) {
-        throw std::invalid_argument("tumble::Cvode::integrate: output time " + format_number(tk) +
+        throw std::invalid_argument("tumble::Cvode::integrate: output time " + format_double(tk) +
                                     " is after the stop time " +
-                                    format_number(*options_.stop_time));
+                                    format_double(*options_.stop_time));
       }
       previous = tk;
       first = false;
@@ -151,9 +153,9 @@ template <class System> class CvodeCore {
       throw std::invalid_argument("tumble::Cvode::reset: the state has a non-finite component");
     }
     if (options_.stop_time && t >= *options_.stop_time) {
-      throw std::invalid_argument("tumble::Cvode::reset: the time " + format_number(t) +
+      throw std::invalid_argument("tumble::Cvode::reset: the time " + format_double(t) +
                                   " is not before the stop time " +
-                                  format_number(*options_.stop_time));
+                                  format_double(*options_.stop_time));
     }
     view(y_.get()) = y;
     t_ = t;
@@ -329,17 +331,17 @@ template <class System> class CvodeCore {
   void check_output_time(double t_out, const char* who) const {
     if (!std::isfinite(t_out)) {
       throw std::invalid_argument(std::string("tumble::Cvode::") + who + ": the time " +
-                                  format_number(t_out) + " is not finite");
+                                  format_double(t_out) + " is not finite");
     }
     if (t_out < t_) {
       throw std::invalid_argument(std::string("tumble::Cvode::") + who + ": the time " +
-                                  format_number(t_out) + " is behind the current time " +
-                                  format_number(t_));
+                                  format_double(t_out) + " is behind the current time " +
+                                  format_double(t_));
     }
     if (options_.stop_time && t_out > *options_.stop_time) {
       throw std::invalid_argument(std::string("tumble::Cvode::") + who + ": the time " +
-                                  format_number(t_out) + " is after the stop time " +
-                                  format_number(*options_.stop_time));
+                                  format_double(t_out) + " is after the stop time " +
+                                  format_double(*options_.stop_time));
     }
   }
 
@@ -556,7 +558,7 @@ template <class System> class CvodeCore {
   int root_count_ = 0;
   ErrorCapture errors_;
   CallbackReport report_;
-  std::vector<int> root_info_;
+  CacheLineVector<int> root_info_;  ///< written at each root found: lines of its own
   CvodeStatistics accumulated_{};
   long roots_found_ = 0;
   long reinits_ = 0;

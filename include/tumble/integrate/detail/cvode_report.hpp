@@ -15,6 +15,7 @@
 #include <cvode/cvode_ls.h>
 #include <cvode/cvode_proj.h>
 
+#include "tumble/core/format.hpp"
 #include "tumble/integrate/detail/cvode_flags.hpp"
 #include "tumble/integrate/detail/sundials.hpp"
 #include "tumble/integrate/errors.hpp"
@@ -47,12 +48,6 @@ struct CallbackReport {
   }
 };
 
-inline std::string format_number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.10g", x);
-  return buf;
-}
-
 inline std::string exception_message(const std::exception_ptr& e) {
   try {
     std::rethrow_exception(e);
@@ -67,12 +62,12 @@ inline std::string exception_message(const std::exception_ptr& e) {
 inline std::string callback_note(const CallbackReport& r) {
   if (r.exception) {
     return "; " + std::string(r.exception_where) +
-           " threw at t = " + format_number(r.exception_time) + ": " +
+           " threw at t = " + format_double(r.exception_time) + ": " +
            exception_message(r.exception);
   }
   if (r.has_recoverable) {
     return "; last recoverable failure: " + std::string(r.recoverable_where) +
-           " at t = " + format_number(r.recoverable_time) + ": " + r.recoverable_message.data();
+           " at t = " + format_double(r.recoverable_time) + ": " + r.recoverable_message.data();
   }
   return "";
 }
@@ -82,7 +77,7 @@ inline std::string callback_note(const CallbackReport& r) {
 inline CvodeError cvode_failure(int flag, double t, const CvodeOptions& o, const CallbackReport& r,
                                 const ErrorCapture& e) {
   const std::string name = flag_name(flag);
-  std::string what = "tumble::Cvode: CVODE failed with " + name + " at t = " + format_number(t) +
+  std::string what = "tumble::Cvode: CVODE failed with " + name + " at t = " + format_double(t) +
                      ": " + flag_cause(flag);
   if (flag == CV_TOO_MUCH_WORK) {
     what += " (max_steps = " + std::to_string(o.max_steps) + ")";
@@ -99,9 +94,9 @@ inline CvodeError cvode_failure(int flag, double t, const CvodeOptions& o, const
 inline CvodeError stalled_failure(double before, double t, double h, long steps,
                                   const CallbackReport& r) {
   std::string what =
-      "tumble::Cvode: the integration stalled at t = " + format_number(t) + ": " +
-      std::to_string(steps) + " internal steps moved t from " + format_number(before) + " by " +
-      format_number(t - before) + " (step h = " + format_number(h) +
+      "tumble::Cvode: the integration stalled at t = " + format_double(t) + ": " +
+      std::to_string(steps) + " internal steps moved t from " + format_double(before) + " by " +
+      format_double(t - before) + " (step h = " + format_double(h) +
       ", at the rounding level of t), so the requested time cannot be reached; the solution "
       "changes too fast for the precision of t (shift the time origin), or the system has a "
       "singularity here";

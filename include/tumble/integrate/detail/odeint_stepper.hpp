@@ -35,6 +35,7 @@
 #pragma GCC diagnostic pop
 #endif
 
+#include "tumble/core/cache_line.hpp"
 #include "tumble/integrate/explicit_options.hpp"
 
 namespace tumble::detail {
@@ -42,9 +43,11 @@ namespace tumble::detail {
 namespace odeint = boost::numeric::odeint;
 
 /// Odeint's state: a std::array when the size is known at compile time (no heap at all), a
-/// std::vector otherwise (sized once; Odeint's buffers are resized only when the size changes).
+/// std::vector otherwise (sized once; Odeint's buffers are resized only when the size changes),
+/// on whole cache lines of its own (core/cache_line.hpp): the state, the stage buffers Odeint
+/// makes of the same type, written at every step, share no line with another thread's data.
 template <int N>
-using OdeintState = std::conditional_t<N == Eigen::Dynamic, std::vector<double>,
+using OdeintState = std::conditional_t<N == Eigen::Dynamic, CacheLineVector<double>,
                                        std::array<double, static_cast<std::size_t>(N < 0 ? 1 : N)>>;
 
 /// Odeint's error test with an absolute tolerance per entry (or one for all): the largest of

@@ -17,6 +17,7 @@
 // Owning handles are std::unique_ptr with a deleter that calls the SUNDIALS destroy function, so
 // nothing leaks when a constructor throws half way.
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdio>
@@ -37,6 +38,8 @@
 #include <sundials/sundials_nonlinearsolver.h>
 #include <sundials/sundials_nvector.h>
 #include <sundials/sundials_types.h>
+
+#include "tumble/core/cache_line.hpp"
 
 #if !defined(SUNDIALS_VERSION_MAJOR) || SUNDIALS_VERSION_MAJOR < 6
 #error "tumble::Cvode needs SUNDIALS >= 6 (CVODE with SUNContext)"
@@ -127,14 +130,39 @@ template <class T> T* require_allocated(T* p) {
   return p;
 }
 
+/// The clone operation of tumble's serial vectors: a serial N_Vector like w (its operations
+/// included) whose data are whole cache lines of their own (core/cache_line.hpp), from
+/// std::aligned_alloc, so that SUNDIALS' own destroy frees them (free()). Null when memory runs
+/// out (SUNDIALS' convention for clones).
+inline N_Vector clone_on_lines(N_Vector w) noexcept {
+  N_Vector v = N_VCloneEmpty_Serial(w);  // w's length and operations, no data
+  if (v == nullptr) {
+    return nullptr;
+  }
+  const auto n = std::max<std::size_t>(static_cast<std::size_t>(NV_LENGTH_S(w)), 1);
+  void* data = std::aligned_alloc(kCacheLine, CacheLineAllocator<sun_real>::padded(n));
+  if (data == nullptr) {
+    N_VDestroy_Serial(v);
+    return nullptr;
+  }
+  NV_DATA_S(v) = static_cast<sun_real*>(data);
+  NV_OWN_DATA_S(v) = SUNTRUE;
+  return v;
+}
+
 /// A serial N_Vector of length n, with SUNDIALS' fused and vector-array operations enabled when
 /// `fused` is true (they are off by default). CVODE clones every vector it works with (the
 /// Nordsieck array, the error weights, the nonlinear solver's and projection's work vectors)
 /// from the y0 given to CVodeInit, and a clone inherits the operations of the vector it was
 /// cloned from: so this must be the vector handed to CVodeInit, set before that call (NVECTOR
-/// serial module, "fused and vector array operations", SUNDIALS 6.x and 7.x alike).
+/// serial module, "fused and vector array operations", SUNDIALS 6.x and 7.x alike). Its clone
+/// operation is clone_on_lines: the data of this vector and of every clone, written at every
+/// step, are cache lines of their own, never shared with another thread's integrator (SUNDIALS
+/// would take them from malloc).
 inline NVectorHandle make_serial_vector(sunindextype n, SUNContext ctx, bool fused) {
-  NVectorHandle v(require_allocated(N_VNew_Serial(n, ctx)));
+  const NVectorHandle empty(require_allocated(N_VNewEmpty_Serial(n, ctx)));
+  empty->ops->nvclone = &clone_on_lines;
+  NVectorHandle v(require_allocated(clone_on_lines(empty.get())));
   if (fused && N_VEnableFusedOps_Serial(v.get(), SUNTRUE) != 0) {
     throw std::runtime_error("tumble::Cvode: N_VEnableFusedOps_Serial failed");
   }
