@@ -346,7 +346,9 @@ class RigidBody {
   }
 
   /// The part of velocity_rates that is linear in the wrench: (a_c, alpha) for the wrench w at
-  /// rest (omega = 0), with the attitude `rotation` (read off the centroid only). It is the
+  /// rest (omega = 0), with the attitude `rotation` (read off the centroid only): Eq. (1.32)
+  /// through the file comment's closed form without its omega terms (Eq. 1.33 at the centroid).
+  /// It is the
   /// inverse of the body's mass matrix in the velocities [v; omega], applied to w (its dual): what
   /// a joint's reaction -J^T lambda does to the body's accelerations (scene/joints.hpp). Zero
   /// translational acceleration for a body held at a fixed point.

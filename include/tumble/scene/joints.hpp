@@ -1,8 +1,9 @@
 #pragma once
 // The constraint solve of a mechanism (a scene with joints, joint/): the multipliers lambda of
 //   M nudot = f + W - J^T lambda,   J nudot = gamma
-// (the reference chapter's M qddot = f_v + Q - C_q^T lambda, C_q qddot = gamma, written in each
-// body's velocities nu = [v; omega], where M is the Newton-Euler mass matrix and C_q = J G^{-1}),
+// (the reference chapter's Eq. 1.32, M qddot = f_v + Q, with the constraint forces -C_q^T lambda
+// added and C_q qddot = gamma, written in each body's velocities nu = [v; omega], where M is the
+// Newton-Euler mass matrix of Eqs. 1.21-1.23 in those velocities and C_q = J G^{-1}, Eq. 1.5),
 // solved through the structure: M is block diagonal per body, and its inverse applied to a wrench
 // is the body's closed form (RigidBody::wrench_response), so with B_i = M_i^{-1}
 //   (J B J^T) lambda = J nudot_free - gamma,   nudot_free = B (f + W)
