@@ -166,6 +166,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     try {
       Eigen::Map<Vec>(x_.data(), size()) = s.y;
       base_ = s.base;
+      if constexpr (SceneT::has_joints) {  // which rows are redundant: decided once per run
+        detail::freeze_redundant_rows(*scene_, ws_, map(std::as_const(x_)), bases());
+      }
       bool recentered = false;
       after_change(recentered);
       evaluate(x_, dxdt_, t);  // throws NonFiniteError at a state the scene cannot evaluate

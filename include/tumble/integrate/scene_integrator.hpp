@@ -239,6 +239,13 @@ template <class SceneT> class SceneSystem {
     }
   }
 
+  /// A mechanism's redundant rows, frozen at the state y for the run (scene/assembly.hpp).
+  template <class Y> void freeze_redundancy(const Y& y) {
+    if constexpr (SceneT::has_joints) {
+      detail::freeze_redundant_rows(*scene_, ws_, y, bases());
+    }
+  }
+
   /// Re-centers the charts of y (and base_) that are in their switch zone; true if any changed.
   template <class Y> bool recenter(Y&& y) {
     return recenter_charts(*scene_, y, std::span<Matrix3<double>>(base_),
@@ -335,6 +342,7 @@ template <class SceneT> class SceneIntegrator {
       Eigen::VectorXd y = s.y;
       sys.set_bases(s.base);
       sys.recenter(y);
+      sys.freeze_redundancy(y);
       cvode_.reset(t, y);
     } catch (...) {
       sys.set_bases(old);
@@ -392,6 +400,7 @@ template <class SceneT> class SceneIntegrator {
     SceneSystem system(scene, s0.base, !project && options.stabilize_quaternions, preconditioned);
     Eigen::VectorXd y = s0.y;
     system.recenter(y);
+    system.freeze_redundancy(y);
     return Cvode<SceneSystem>(std::move(system), t0, y, std::move(cvode));
   }
 

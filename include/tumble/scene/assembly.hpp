@@ -159,6 +159,25 @@ template <class SceneT> double length_scale(const SceneT& scene, const SceneWork
   return l;
 }
 
+/// Freezes a mechanism's redundant rows for a run (joints.hpp, freeze_dependent): the rows that
+/// J B J^T at the state (y, base) shows dependent. Returns how many. The integrators call it when
+/// they start or restart, so that which rows carry no reaction is decided once, not at every
+/// evaluation.
+template <class SceneT, class Y>
+int freeze_redundant_rows(const SceneT& scene, SceneWorkspace<SceneT>& ws, const Y& y,
+                          std::span<const Matrix3<double>> base) {
+  JointScratch& j = ws.joints();
+  j.dependent.clear();
+  if (scene.constraint_count() == 0) {
+    return 0;
+  }
+  scene_kinematics(scene, ws, y, base);
+  joint_rows(scene, ws);
+  joint_responses(scene, ws, [](int) { return true; });
+  joint_schur(j);
+  return freeze_dependent(j);
+}
+
 /// The projection of the file comment, in place, for the bodies `mobile(id)` allows to move:
 /// Newton until max |C| <= tolerance * length_scale (or max_iterations), then the velocities.
 /// Allocates nothing. Returns the residuals after it and the iterations taken in `iterations`.

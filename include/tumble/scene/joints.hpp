@@ -17,12 +17,25 @@
 // carry no reaction (a basic solution, not the minimum-norm one). The accelerations do not depend
 // on that choice: two solutions differ by a null vector of J^T.
 //
+// Which rows are dependent is decided once per run, not at every evaluation: the integrators
+// freeze the rows found dependent at the initial state (freeze_dependent; JointScratch::
+// dependent), and every later solve leaves exactly those out. Found anew at each evaluation, a
+// rank that changes at an isolated position makes the right-hand side jump there: Bricard's
+// mechanism (rank 29 of 30 rows) meets a position where a second row becomes dependent for an
+// instant, and there the threshold dropped a row whose reaction has a finite limit, so the
+// acceleration jumped and the step size collapsed (tests/joint/iftomm.test.cpp, A04). With the
+// rows frozen, the retained rows stay independent there, as the same mechanism with its last
+// hinge made a universal joint (29 independent rows, the same motion) shows.
+//
 // The solve reads the kinematics and wrenches the right-hand side's first two passes left in the
 // workspace (rhs.hpp), and writes lambda there.
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
 #include <Eigen/Cholesky>
 
@@ -105,6 +118,25 @@ inline void joint_schur(JointScratch& j) {
     }
   }
   const Eigen::Index m = j.c.size();
+  // Rows frozen as dependent: their row and column replaced by the identity's, so that the
+  // factorization solves the retained rows alone and the frozen ones get 0 (joint_solve).
+  for (std::size_t i = 0; i < j.dependent.size(); ++i) {
+    if (!j.dependent[i]) {
+      continue;
+    }
+    const auto r = static_cast<Eigen::Index>(i);
+    if (banded) {
+      j.band.row(r).setZero();
+      for (Eigen::Index k = 1; k <= std::min<Eigen::Index>(j.bandwidth, m - 1 - r); ++k) {
+        j.band(r + k, k) = 0.0;
+      }
+      j.band(r, 0) = 1.0;
+    } else {
+      j.a.row(r).setZero();
+      j.a.col(r).setZero();
+      j.a(r, r) = 1.0;
+    }
+  }
   for (Eigen::Index i = 0; i < m; ++i) {
     const double d = banded ? j.band(i, 0) : j.a(i, i);
     j.work(i) = d > 0.0 ? 1.0 / std::sqrt(d) : 0.0;
@@ -148,9 +180,15 @@ inline void joint_schur(JointScratch& j) {
 }
 
 /// x solving A x = b through the factorization of joint_schur (A = J B J^T, scaled inside): a
-/// basic solution, the dependent rows' unknowns zero. Sets j.rank. x must not alias b.
+/// basic solution, the dependent rows' unknowns zero (the frozen ones among them). Sets j.rank.
+/// x must not alias b.
 inline void joint_solve(JointScratch& j, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
   x = j.work.asDiagonal() * b;
+  for (std::size_t i = 0; i < j.dependent.size(); ++i) {
+    if (j.dependent[i]) {
+      x(static_cast<Eigen::Index>(i)) = 0.0;
+    }
+  }
   if (j.bandwidth >= 0) {
     const Eigen::Index m = x.size(), bw = j.bandwidth;
     for (Eigen::Index i = 0; i < m; ++i) {  // L y = x
@@ -185,6 +223,45 @@ inline void joint_solve(JointScratch& j, const Eigen::VectorXd& b, Eigen::Vector
   j.ldlt.matrixU().solveInPlace(x);
   x = j.ldlt.transpositionsP().transpose() * x;
   x = j.work.asDiagonal() * x;
+}
+
+/// Freezes as dependent the rows that the last joint_schur, run with no rows frozen, found
+/// dependent (pivots below kRankTolerance); returns how many. Every later joint_schur and
+/// joint_solve on j leaves them out (see the file comment).
+inline int freeze_dependent(JointScratch& j) {
+  const Eigen::Index m = j.c.size();
+  j.dependent.assign(static_cast<std::size_t>(m), 0);
+  int count = 0;
+  const auto mark = [&](Eigen::Index row) {
+    j.dependent[static_cast<std::size_t>(row)] = 1;
+    ++count;
+  };
+  if (j.bandwidth >= 0) {
+    for (Eigen::Index i = 0; i < m; ++i) {
+      if (j.pivots(i) == 0.0) {
+        mark(i);
+      }
+    }
+    return count;
+  }
+  // The pivoted factorization P A P^T = L D L^T: position i of D belongs to row perm[i] of A,
+  // P the transpositions applied in order (as Eigen's Transpositions * vector does).
+  std::vector<Eigen::Index> perm(static_cast<std::size_t>(m));
+  for (Eigen::Index i = 0; i < m; ++i) {
+    perm[static_cast<std::size_t>(i)] = i;
+  }
+  const auto& t = j.ldlt.transpositionsP();
+  for (Eigen::Index k = 0; k < t.size(); ++k) {
+    std::swap(perm[static_cast<std::size_t>(k)], perm[static_cast<std::size_t>(t.coeff(k))]);
+  }
+  const auto& d = j.ldlt.vectorD();
+  const double tol = kRankTolerance * (d.size() > 0 ? d.cwiseAbs().maxCoeff() : 0.0);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    if (!(std::abs(d(i)) > tol)) {
+      mark(perm[static_cast<std::size_t>(i)]);
+    }
+  }
+  return count;
 }
 
 /// The rows' rate J nu' for per-body 6-vectors nu' (the columns of `per_body`).

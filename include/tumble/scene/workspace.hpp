@@ -63,6 +63,10 @@ struct JointScratch {
   std::vector<int> joint_a, joint_b;             ///< per row: its joint's bodies (-1: ground)
   Eigen::VectorXd y;                             ///< a state's copy (CVODE's projection)
   int rank = 0;                                  ///< the rank the last solve found
+  /// Per row: 1 when the row is frozen as redundant (joints.hpp, freeze_dependent): it carries no
+  /// reaction and the solve leaves it out. Empty (the default): every row is solved for, and
+  /// the dependent ones are found anew by each factorization.
+  std::vector<char> dependent;
 };
 
 template <class SceneT> class SceneWorkspace {
