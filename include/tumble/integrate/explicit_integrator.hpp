@@ -6,29 +6,17 @@
 //
 // The state is Odeint's std::array<double, N> when the scene's size N is a template argument
 // (checked against scene.size()), a std::vector otherwise, viewed through Eigen::Map; nothing is
-// allocated per step (events' user callables aside). What a step writes on the heap (a dynamic
-// state, Odeint's stage buffers, the chart roots) is whole cache lines of its own
-// (core/cache_line.hpp): two threads' integrators never write one line. Odeint supplies the
-// steppers and the step-size controller (try_step); the loop is here (docs/integrators.md), and
-// between two accepted steps it does what a one-step method can do without a restart:
-// - Three-parameter charts: a trial step that ends deeper in a switch zone than half its width
-//   is rejected and retried shorter; an accepted step that ends inside the zone is followed by
-//   recenter_charts (scene/charts.hpp: re-centering, MRP's shadow set), counted per body.
-// - Euler parameters: projected onto their manifold after every step (scene/projection.hpp).
-// - User events: a sign change over a step, in the event's direction, is located by the Illinois
-//   method to 1e-12 of the time scale, on Odeint's dense output (dopri5) or by re-stepping from
-//   the step's start; the step is cut there and the action applied.
-// - Output times are stepped to exactly (the controller's longer suggestion kept): the state
-//   returned is a projected step result. Except in integrate() with Dormand-Prince on a scene
-//   without events (OdeintOptions::interpolate_outputs): the steps run free to the last output
-//   time and the outputs inside a step are read off its dense output, on its chart.
-// After y changes between steps the derivative at the step's start is evaluated again (dopri5
-// loses its first-same-as-last saving). Stiffness: every OdeintOptions::stiffness_window
-// attempts, and when a step budget (max_steps) is spent, a window with at least 10 % of its
-// attempts rejected has the Jacobian's largest eigenvalue modulus rho estimated; with h rho > 1
-// for the mean step h, StiffSceneError names BDF (a spent budget otherwise throws
-// ExplicitIntegrationError). Never a run that does not end, never a NaN state: non-finite trial
-// states are rejected, and a step size at the rounding level of t throws.
+// allocated per step (events' user callables aside), and what a step writes on the heap is whole
+// cache lines of its own (core/cache_line.hpp). Odeint supplies the steppers and the step-size
+// controller (try_step); the loop is here, and between two accepted steps it does what a
+// one-step method can do without a restart (docs/integrators.md, "The explicit integrator"):
+// charts re-centered after a step that ends in a switch zone (one that ends deep in it is
+// retried shorter), Euler parameters and a mechanism's joints projected after every step, user
+// events located on the step (Illinois) and the step cut there, output times stepped to exactly
+// (or, with Dormand-Prince, read off its dense output), and a stiffness test every
+// stiffness_window attempts and when a budget is spent (integrate/detail/explicit_diagnostics.hpp).
+// Never a run that does not end, never a NaN state: non-finite trial states are rejected, and a
+// step size at the rounding level of t throws.
 
 #include <algorithm>
 #include <cmath>
@@ -45,6 +33,7 @@
 #include "tumble/core/cache_line.hpp"
 #include "tumble/core/errors.hpp"
 #include "tumble/core/format.hpp"
+#include "tumble/integrate/detail/explicit_diagnostics.hpp"
 #include "tumble/integrate/detail/explicit_numerics.hpp"
 #include "tumble/integrate/detail/odeint_stepper.hpp"
 #include "tumble/integrate/detail/state_check.hpp"
@@ -78,7 +67,10 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
 
   /// Integrate `scene` from (t0, s0), a state of this scene.
   OdeintIntegrator(const SceneT& scene, double t0, const SceneState& s0, OdeintOptions options = {})
-      : scene_(&scene), options_(checked(scene, options)), ws_(scene), stepper_(make_stepper()) {
+      : scene_(&scene),
+        options_(detail::checked_odeint_options<N>(options, scene.size())),
+        ws_(scene),
+        stepper_(detail::make_odeint_stepper<State>(options_)) {
     ws_.stabilize_constraints = options_.stabilize_quaternions;
     const int n = scene.size();
     if constexpr (N == Eigen::Dynamic) {
@@ -117,7 +109,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       throw std::invalid_argument("tumble::OdeintIntegrator::advance: t_out = " + num(t_out) +
                                   " must be finite and not before the current time " + num(t_));
     }
-    run_ = Run{.t_start = t_};
+    run_ = detail::StepRun{.t_start = t_};
     while (t_ < t_out) {
       std::visit([&](auto& s) { step_with(s, t_out); }, stepper_);
     }
@@ -181,7 +173,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
                                   e.what());
     }
     t_ = t;
-    window_ = Run{.t_start = t};
+    window_ = detail::StepRun{.t_start = t};
     h_ = options_.initial_step > 0.0 ? options_.initial_step : initial_step();
     events_at(t_, x_, ev_old_);
     sync();
@@ -219,8 +211,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   [[nodiscard]] const OdeintOptions& options() const { return options_; }
 
  private:
-  using Stepper =
-      std::variant<detail::Fehlberg78<State>, detail::Dopri5<State>, detail::CashKarp54<State>>;
+  using Stepper = detail::OdeintStepper<State>;
 
   /// integrate() on the dense output of S: free steps to the last output time; each accepted
   /// step hands the outputs inside it to the observer, interpolated on the step (x_old_, x_
@@ -242,43 +233,20 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       for (; it != end && *it <= t_new; ++it) {
         stepper.state_at(sys, *it, x_tmp_, x_old_, dxdt_old_, t_old, x_, dxdt_, t_new);
         out_state_.y = map(x_tmp_);
-        if constexpr (SceneT::has_constraints) {
-          Eigen::VectorXd no_error;  // empty: nothing to project but the state
-          tumble::project(*scene_, out_state_.y, map(corr_), no_error);
-          out_state_.y += map(corr_);
-        }
         out_state_.base = base_;
-        if constexpr (SceneT::has_joints) {
-          project_joints(out_state_.y);
-        }
+        project_onto_constraints(out_state_.y);
         observer(*it, std::as_const(out_state_));
       }
       if (it != first) {
-        run_ = Run{.t_start = t_new};  // the step budget counts per output interval
+        run_ = detail::StepRun{.t_start = t_new};  // the step budget counts per output interval
       }
     };
-    run_ = Run{.t_start = t_};
+    run_ = detail::StepRun{.t_start = t_};
     while (t_ < t_last) {
       step_with(stepper, t_last, outputs);
     }
     sync();
   }
-
-  /// A spent budget is reported as stiffness when the mean step h and the estimated largest
-  /// eigenvalue rho of the Jacobian have h rho above this (the steps sit near the stability bound
-  /// of the method, about 3 to 5 along the negative real axis for these pairs, instead of being
-  /// set by the accuracy of the slow motion) and at least kStiffRejections of the attempts failed
-  /// the error test (the controller keeps stepping over the stability bound).
-  static constexpr double kStiffHRho = 1.0;
-  static constexpr double kStiffRejections = 0.1;
-
-  /// What one advance() has spent, for its budget and the stiffness test.
-  struct Run {
-    double t_start = 0.0;
-    long attempts = 0;  ///< step attempts
-    long accepted = 0;  ///< accepted steps
-    long rejected = 0;  ///< of which failed Odeint's error test
-  };
 
   /// What Odeint calls for the stages of a step of the stepper S: x' = f(t, x), counted,
   /// unchecked (see stage()).
@@ -297,37 +265,6 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   std::span<const Matrix3<double>> bases() const { return base_; }
 
   static std::string num(double v) { return detail::format_double(v); }
-
-  static OdeintOptions checked(const SceneT& scene, const OdeintOptions& o) {
-    validate(o, scene.size());
-    if constexpr (N != Eigen::Dynamic) {
-      if (scene.size() != N) {
-        throw std::invalid_argument(
-            "tumble::OdeintIntegrator<SceneT, N>: N = " + std::to_string(N) +
-            ", but the scene has size " + std::to_string(scene.size()) +
-            " (Scene::size()): give N as tumble::state_size<SceneT, Body...> with one Body for "
-            "each body of the scene, or Eigen::Dynamic");
-      }
-    }
-    return o;
-  }
-
-  /// The stepper of the method, with the error test of the options' tolerances (a per-entry
-  /// atol is read from options_, which lives as long as the stepper).
-  Stepper make_stepper() const {
-    const auto* v = std::get_if<Eigen::VectorXd>(&options_.atol);
-    const double atol = v ? 0.0 : std::get<double>(options_.atol);
-    const double* entries = v ? v->data() : nullptr;
-    switch (options_.method) {
-      case OdeintMethod::dopri5:
-        return detail::Dopri5<State>(atol, options_.rtol, entries);
-      case OdeintMethod::cash_karp54:
-        return detail::CashKarp54<State>(atol, options_.rtol, entries);
-      case OdeintMethod::fehlberg78:
-        break;
-    }
-    return detail::Fehlberg78<State>(atol, options_.rtol, entries);
-  }
 
   void check_state(const SceneState& s, double t) const {
     const std::string who = "tumble::OdeintIntegrator";
@@ -372,67 +309,49 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     return (map(v).array() * 0.0).sum() == 0.0;
   }
 
-  /// Projects y onto a mechanism's constraints (scene/assembly.hpp), the bases those of x_.
-  template <class Y> void project_joints(Y& y) {
-    int iterations = 0;
-    const ConstraintResidual r = detail::project_constraints(
-        *scene_, ws_, y, bases(), detail::kJointProjectionTolerance,
-        detail::kJointProjectionIterations, [](int) { return true; }, iterations);
-    if (!(r.position <= detail::kJointProjectionFailure)) [[unlikely]] {
-      throw ExplicitIntegrationError("tumble::OdeintIntegrator: the projection onto the joints' "
-                                     "constraints did not converge (max |C| = " +
-                                         detail::format_double(r.position) +
-                                         " at t = " + detail::format_double(t_) + ")",
-                                     IntegrationFailure::solver, t_);
+  /// Projects y (with the bases of x_) onto the unit quaternions (scene/projection.hpp), then a
+  /// mechanism's joints (scene/assembly.hpp); false when the scene has neither (y unchanged).
+  template <class Y> bool project_onto_constraints(Y& y) {
+    if constexpr (SceneT::has_constraints) {
+      Eigen::VectorXd no_error;  // empty: no local error estimate to project (no allocation)
+      tumble::project(*scene_, y, map(corr_), no_error);
+      y += map(corr_);
     }
+    if constexpr (SceneT::has_joints) {
+      int iterations = 0;
+      const ConstraintResidual r = detail::project_constraints(
+          *scene_, ws_, y, bases(), detail::kJointProjectionTolerance,
+          detail::kJointProjectionIterations, [](int) { return true; }, iterations);
+      if (!(r.position <= detail::kJointProjectionFailure)) [[unlikely]] {
+        throw ExplicitIntegrationError("tumble::OdeintIntegrator: the projection onto the joints' "
+                                       "constraints did not converge (max |C| = " +
+                                           num(r.position) + " at t = " + num(t_) + ")",
+                                       IntegrationFailure::solver, t_);
+      }
+    }
+    return SceneT::has_constraints || SceneT::has_joints;
   }
 
   /// Projects the quaternions and re-centers the charts of x_ (in their switch zone); true if
   /// y changed. `recentered`: whether a chart was.
   bool after_change(bool& recentered) {
-    bool changed = false;
-    if constexpr (SceneT::has_constraints) {
-      Eigen::VectorXd no_error;  // empty: no local error estimate to project (no allocation)
-      tumble::project(*scene_, map(x_), map(corr_), no_error);
-      map(x_) += map(corr_);
-      ++stats_.projections;
-      changed = true;
-    }
     Eigen::Map<Vec> y = map(x_);
-    if constexpr (SceneT::has_joints) {
-      project_joints(y);
-      if constexpr (!SceneT::has_constraints) {
-        ++stats_.projections;
-      }
-      changed = true;
-    }
+    const bool changed = project_onto_constraints(y);
+    stats_.projections += changed ? 1 : 0;
     recentered = recenter_charts(*scene_, y, std::span<Matrix3<double>>(base_),
                                  [this](int id) { ++switches_[static_cast<std::size_t>(id)]; }) > 0;
     return changed || recentered;
   }
 
-  /// 1 when x is finite and no chart is deeper in its switch zone than half its width; else the
-  /// fraction of the step to retry with: for a chart, the one that would end the step in the
-  /// middle of the allowed part of the zone if the root were linear in t.
+  /// 1 when x is finite and no chart ends deeper in its switch zone than half its width; else
+  /// the fraction of the step to retry with (scene/charts.hpp, chart_step_fraction).
   double acceptable(const State& x) {
     for (const double v : x) {
       if (!std::isfinite(v)) {
         return 0.25;
       }
     }
-    double fraction = 1.0;
-    if (!g_.empty()) {
-      chart_roots(*scene_, map(x), g_);
-      for (std::size_t i = 0; i < g_.size(); ++i) {
-        const double deep = deep_[i];
-        if (!(g_[i] >= deep)) {
-          chart_roots(*scene_, map(x_), g0_);
-          const double f = (g0_[i] - 0.5 * deep) / (g0_[i] - g_[i]);
-          fraction = std::min(fraction, std::isfinite(f) ? std::clamp(f, 0.1, 0.9) : 0.5);
-        }
-      }
-    }
-    return fraction;
+    return chart_step_fraction(*scene_, map(x_), map(x), deep_, g0_, g_);
   }
 
   void events_at(double t, const State& x, CacheLineVector<double>& g) const {
@@ -574,36 +493,22 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     }
   }
 
-  static bool crosses(double a, double b, int direction) {
-    return (direction >= 0 && a < 0.0 && b >= 0.0) || (direction <= 0 && a > 0.0 && b <= 0.0);
-  }
-
   /// Finds the first event whose function changed sign over the last step (in its direction),
   /// locates its root, cuts the step there (x_, t_) and applies its action. True if one was.
   template <class S>
   bool locate_events(S& stepper, const System<S>& sys, double t_old, double t_new) {
     const auto& events = scene_->events();
-    std::size_t first = events.size();
-    double t_first = t_new;
-    const double tol = 1e-12 * std::max(std::abs(t_new), t_new - t_old);
     const auto state_at = [&](double t, State& out) {
       stepper.state_at(sys, t, out, x_old_, dxdt_old_, t_old, x_, dxdt_, t_new);
     };
-    for (std::size_t i = 0; i < events.size(); ++i) {
-      if (!crosses(ev_old_[i], ev_new_[i], events[i].direction)) {
-        continue;
-      }
-      const double b = detail::illinois(
-          [&](double c) {
-            state_at(c, x_tmp_);
-            return events[i].function(c, SceneStateView(x_tmp_.data(), size(), bases()));
-          },
-          t_old, t_new, ev_old_[i], ev_new_[i], tol);
-      if (b < t_first || first == events.size()) {
-        first = i;
-        t_first = b;
-      }
-    }
+    double t_first = t_new;
+    const std::size_t first = detail::first_event(
+        events, ev_old_, ev_new_, t_old, t_new,
+        [&](std::size_t i, double c) {
+          state_at(c, x_tmp_);
+          return events[i].function(c, SceneStateView(x_tmp_.data(), size(), bases()));
+        },
+        t_first);
     if (first == events.size()) {
       return false;
     }
@@ -645,64 +550,22 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
                                    v, y1, f1);
   }
 
-  /// True when the attempts of `r` look like those of an explicit method on a stiff scene: at
-  /// least kStiffRejections of them failed the error test and the mean step h has
-  /// h rho > kStiffHRho. Sets h rho.
-  bool looks_stiff(const Run& r, double& h_rho) {
-    h_rho = 0.0;
-    if (static_cast<double>(r.rejected) < kStiffRejections * static_cast<double>(r.attempts)) {
-      return false;  // no spectral radius needed: the test costs nothing
-    }
-    const double mean_h = r.accepted > 0 ? (t_ - r.t_start) / static_cast<double>(r.accepted) : 0.0;
-    h_rho = mean_h * spectral_radius();
-    return h_rho > kStiffHRho;
-  }
-
   /// The stiffness test of a full window (OdeintOptions::stiffness_window): throws
   /// StiffSceneError, or starts the next window.
   void stiffness_test(double t_out) {
     double h_rho = 0.0;
-    if (looks_stiff(window_, h_rho)) {
-      throw StiffSceneError(
-          "tumble::OdeintIntegrator::advance: the scene looks stiff at t = " + num(t_) + ": of " +
-              std::to_string(window_.attempts) + " step attempts since t = " +
-              num(window_.t_start) + ", " + std::to_string(window_.rejected) +
-              " failed the error test, and the mean step h times the largest eigenvalue modulus "
-              "rho of the Jacobian is h rho = " +
-              num(h_rho) +
-              ": the steps are held at the method's stability bound, not set by the accuracy "
-              "asked for (t_out = " +
-              num(t_out) +
-              "). Integrate it with tumble::SceneIntegrator and CvodeMethod::bdf (BDF, "
-              "implicit), or let tumble::AutoIntegrator switch",
-          t_);
+    if (detail::looks_stiff(
+            window_, t_, [this] { return spectral_radius(); }, h_rho)) {
+      detail::throw_stiff_window(window_, t_, h_rho, t_out);
     }
-    window_ = Run{.t_start = t_};
+    window_ = detail::StepRun{.t_start = t_};
   }
 
   [[noreturn]] void out_of_budget(double t_out) {
-    const double mean_h =
-        run_.accepted > 0 ? (t_ - run_.t_start) / static_cast<double>(run_.accepted) : 0.0;
-    const std::string what =
-        "tumble::OdeintIntegrator::advance: " + std::to_string(run_.attempts) + " step attempts (" +
-        std::to_string(run_.rejected) +
-        " failed the error test; OdeintOptions::max_steps = " + std::to_string(options_.max_steps) +
-        ") took t from " + num(run_.t_start) + " only to " + num(t_) + " of t_out = " + num(t_out) +
-        ", with steps of " + num(mean_h) + " on average";
     double h_rho = 0.0;
-    if (looks_stiff(run_, h_rho)) {
-      throw StiffSceneError(
-          what + ". The scene looks stiff: the Jacobian has an eigenvalue of modulus " +
-              num(h_rho / mean_h) +
-              ", so the steps are held near the method's stability bound (h rho = " + num(h_rho) +
-              "), not set by the accuracy asked for, and the controller "
-              "keeps stepping over it. Integrate it with tumble::SceneIntegrator and "
-              "CvodeMethod::bdf (BDF, implicit)",
-          t_);
-    }
-    throw ExplicitIntegrationError(what + ". Raise OdeintOptions::max_steps for longer intervals "
-                                          "(0: no limit), or integrate to intermediate times",
-                                   IntegrationFailure::step_budget, t_);
+    const bool stiff = detail::looks_stiff(
+        run_, t_, [this] { return spectral_radius(); }, h_rho);
+    detail::throw_out_of_budget(run_, options_.max_steps, t_, t_out, stiff, h_rho);
   }
 
   /// Copies the current state into state_; no allocation.
@@ -719,8 +582,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   State x_{}, dxdt_{}, x_old_{}, dxdt_old_{}, x_new_{}, dxdt_new_{}, x_tmp_{};
   bool deriv_valid_ = false;        ///< dxdt_ is x' at x_
   bool stage_not_finite_ = false;   ///< some stage of the current trial step was not finite
-  Run run_;                         ///< this advance (or output interval): the step budget
-  Run window_;                      ///< the attempts since the last stiffness test
+  detail::StepRun run_;             ///< this advance (or output interval): the step budget
+  detail::StepRun window_;          ///< the attempts since the last stiffness test
   double t_ = 0.0, h_ = 0.0;        ///< time, next step size
   State corr_{};                    ///< the projection's correction
   CacheLineVector<double> g_, g0_;  ///< chart roots at a step's end and start

@@ -10,6 +10,9 @@
 // part of the state (state.hpp), so these functions change both the continuous vector y and the
 // bases, and nothing in the scene.
 
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <span>
 #include <type_traits>
 
@@ -57,6 +60,33 @@ template <class Entry, class Y> void leave_chart(const Entry& e, Y& y, Matrix3<d
     const Vector3<double> w = P::G(th) * y.template segment<Body::n_theta>(e.rates + e.theta_at);
     y.template segment<Body::n_theta>(e.rates + e.theta_at) = P::thetadot(th_new, w);
   }
+}
+
+/// For a trial step from y0 to y1 of an integrator without root finding: 1 when no chart root at
+/// y1 is below its limit (deep[i] < 0: the part of the switch zone a step may end in); else the
+/// fraction of the step to retry with, for each chart that went too deep the one that would end
+/// the step in the middle of the allowed part if the root were linear in t (clamped to 0.1-0.9;
+/// 0.5 when the roots do not bracket it). g1, g0: scratch of the chart bodies' count.
+template <class SceneT, class Y0, class Y1, class G>
+double chart_step_fraction(const SceneT& scene, const Y0& y0, const Y1& y1,
+                           std::span<const double> deep, G& g0, G& g1) {
+  double fraction = 1.0;
+  if (deep.empty()) {
+    return fraction;
+  }
+  chart_roots(scene, y1, g1);
+  bool have_g0 = false;
+  for (std::size_t i = 0; i < deep.size(); ++i) {
+    if (!(g1[i] >= deep[i])) {
+      if (!have_g0) {
+        chart_roots(scene, y0, g0);
+        have_g0 = true;
+      }
+      const double f = (g0[i] - 0.5 * deep[i]) / (g0[i] - g1[i]);
+      fraction = std::min(fraction, std::isfinite(f) ? std::clamp(f, 0.1, 0.9) : 0.5);
+    }
+  }
+  return fraction;
 }
 
 /// Leaves the chart of every body whose root was found (which[i] != 0 for the i-th chart body,

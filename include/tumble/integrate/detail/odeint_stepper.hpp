@@ -15,7 +15,10 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <type_traits>
+#include <variant>
 #include <vector>
 
 #include <Eigen/Core>
@@ -152,5 +155,40 @@ template <class ErrorStepper> class OdeintControlled {
 template <class State> using Fehlberg78 = OdeintControlled<odeint::runge_kutta_fehlberg78<State>>;
 template <class State> using Dopri5 = OdeintControlled<odeint::runge_kutta_dopri5<State>>;
 template <class State> using CashKarp54 = OdeintControlled<odeint::runge_kutta_cash_karp54<State>>;
+
+/// The options, validated for a scene of size n (explicit_options.hpp), and N, the integrator's
+/// fixed size (Eigen::Dynamic: any), checked against it.
+template <int N> OdeintOptions checked_odeint_options(const OdeintOptions& o, long n) {
+  validate(o, n);
+  if constexpr (N != Eigen::Dynamic) {
+    if (n != N) {
+      throw std::invalid_argument(
+          "tumble::OdeintIntegrator<SceneT, N>: N = " + std::to_string(N) +
+          ", but the scene has size " + std::to_string(n) +
+          " (Scene::size()): give N as tumble::state_size<SceneT, Body...> with one Body for "
+          "each body of the scene, or Eigen::Dynamic");
+    }
+  }
+  return o;
+}
+
+/// The pair OdeintOptions::method names, with the error test of the options' tolerances (a
+/// per-entry atol is read from `options`, which must outlive the stepper).
+template <class State>
+using OdeintStepper = std::variant<Fehlberg78<State>, Dopri5<State>, CashKarp54<State>>;
+template <class State> OdeintStepper<State> make_odeint_stepper(const OdeintOptions& options) {
+  const auto* v = std::get_if<Eigen::VectorXd>(&options.atol);
+  const double atol = v ? 0.0 : std::get<double>(options.atol);
+  const double* entries = v ? v->data() : nullptr;
+  switch (options.method) {
+    case OdeintMethod::dopri5:
+      return Dopri5<State>(atol, options.rtol, entries);
+    case OdeintMethod::cash_karp54:
+      return CashKarp54<State>(atol, options.rtol, entries);
+    case OdeintMethod::fehlberg78:
+      break;
+  }
+  return Fehlberg78<State>(atol, options.rtol, entries);
+}
 
 }  // namespace tumble::detail
