@@ -39,3 +39,9 @@ def test_t_handle_example(tmp_path, monkeypatch):
     example = runpy.run_path(str(ROOT / "python" / "examples" / "tumbling_t_handle.py"))
     assert example["main"](str(tmp_path)) >= 2
     assert (tmp_path / "t_handle_omega_py.csv").is_file()
+
+
+def test_attitude_dispersion_example(tmp_path):
+    example = runpy.run_path(str(ROOT / "python" / "examples" / "attitude_dispersion.py"))
+    assert example["main"](str(tmp_path), 200) == 0  # no failed run
+    assert (tmp_path / "attitude_dispersion_py.csv").is_file()
