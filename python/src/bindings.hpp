@@ -1,0 +1,14 @@
+#pragma once
+// The parts of the Python module tumble._tumble, one source file each (split by topic so that
+// no compiler process needs much memory; python/CMakeLists.txt).
+
+#include <nanobind/nanobind.h>
+
+namespace tumble::python {
+
+void bind_errors(nanobind::module_& m);       // errors.cpp
+void bind_orientation(nanobind::module_& m);  // orientation.cpp
+void bind_body(nanobind::module_& m);         // body.cpp
+void bind_scene(nanobind::module_& m);        // scene.cpp
+
+}  // namespace tumble::python

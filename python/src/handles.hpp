@@ -1,0 +1,21 @@
+#pragma once
+// What the Python classes hold, shared by the binding sources.
+
+#include <memory>
+#include <string>
+
+#include <nanobind/nanobind.h>
+
+#include "body.hpp"
+
+namespace tumble::python {
+
+/// tumble.RigidBody: an immutable body, shared by the scenes it is added to.
+struct BodyHandle {
+  std::shared_ptr<const Body> body;
+};
+
+ReferencePoint reference_point(const std::string& name);  // body.cpp
+const char* reference_name(ReferencePoint r);             // body.cpp
+
+}  // namespace tumble::python

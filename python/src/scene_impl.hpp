@@ -1,0 +1,323 @@
+#pragma once
+// CompiledScene (scene_api.hpp) for the scene of parameterization P, with or without a Python
+// load: included by the generated scene sources only (python/src/scene_of.cpp.in), one
+// (P, variant) per translation unit, each about 30 s and 1.4 GB of g++ -O3.
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include <Eigen/Geometry>
+
+#include "scene_api.hpp"
+#include "tumble/ensemble/ensemble.hpp"
+#include "tumble/integrate.hpp"
+#include "tumble/scene/accelerations.hpp"
+#include "tumble/scene/observables.hpp"
+#include "tumble/scene/rhs.hpp"
+#include "tumble/scene/workspace.hpp"
+
+namespace tumble::python::detail {
+
+template <class P, ReferencePoint Ref> using RB = RigidBody<P, Ref>;
+
+template <class P, bool WithPython> struct SceneTypes {
+  using Bodies = tumble::Bodies<RB<P, ReferencePoint::centroid>, RB<P, ReferencePoint::offset>,
+                                RB<P, ReferencePoint::fixed_point>>;
+  using Standard =
+      tumble::Loads<UniformGravity, PointForce, BodyMoment, SpringDamper, SpringDamperBetween>;
+  using WithUser = tumble::Loads<UniformGravity, PointForce, BodyMoment, SpringDamper,
+                                 SpringDamperBetween, UserForce<PythonLoad>>;
+  using Type = Scene<Bodies, std::conditional_t<WithPython, WithUser, Standard>>;
+};
+
+inline std::string method_name(AutoMethod m) { return name(m); }
+
+template <class P, bool WithPython> class SceneOf final : public CompiledScene {
+  using SceneT = typename SceneTypes<P, WithPython>::Type;
+  using Centroid = RB<P, ReferencePoint::centroid>;
+  using Offset = RB<P, ReferencePoint::offset>;
+  using Fixed = RB<P, ReferencePoint::fixed_point>;
+  using Id = std::variant<BodyId<Centroid>, BodyId<Offset>, BodyId<Fixed>>;
+
+ public:
+  SceneOf(const std::vector<BodyRecord>& bodies, const std::vector<LoadRecord>& loads) {
+    for (const BodyRecord& r : bodies) {
+      const void* native = r.body->rigid_body();
+      switch (r.body->reference()) {
+        case ReferencePoint::centroid:
+          ids_.emplace_back(scene_.add(*static_cast<const Centroid*>(native), r.initial));
+          break;
+        case ReferencePoint::offset:
+          ids_.emplace_back(scene_.add(*static_cast<const Offset*>(native), r.initial));
+          break;
+        case ReferencePoint::fixed_point:
+          ids_.emplace_back(scene_.add(*static_cast<const Fixed*>(native), r.initial));
+          break;
+      }
+    }
+    for (const LoadRecord& l : loads) {
+      std::visit(
+          [&](const auto& load) {
+            using L = std::decay_t<decltype(load)>;
+            if constexpr (std::is_same_v<L, SpringDamperBetween>) {
+              std::visit([&](auto a, auto b) { scene_.add_load(a, b, load); }, ids_.at(l.a),
+                         ids_.at(l.b));
+            } else if constexpr (std::is_same_v<L, PythonLoad>) {
+              if constexpr (WithPython) {
+                std::visit([&](auto a) { scene_.add_load(a, UserForce<PythonLoad>(load)); },
+                           ids_.at(l.a));
+              } else {
+                throw std::logic_error("tumble: a Python load in a scene compiled without one");
+              }
+            } else {
+              std::visit([&](auto a) { scene_.add_load(a, load); }, ids_.at(l.a));
+            }
+          },
+          l.load);
+    }
+  }
+
+  [[nodiscard]] int size() const override { return scene_.size(); }
+  [[nodiscard]] const SceneState& initial_state() const override { return scene_.initial_state(); }
+  [[nodiscard]] std::pair<int, int> layout(int id) const override {
+    return std::visit(
+        [&](auto b) {
+          const auto& e = scene_.entry(b);
+          return std::pair<int, int>(e.offset, e.rates);
+        },
+        ids_.at(id));
+  }
+
+  [[nodiscard]] double kinetic_energy(const SceneState& s) const override {
+    return tumble::kinetic_energy(scene_, s);
+  }
+  [[nodiscard]] double potential_energy(const SceneState& s) const override {
+    return tumble::potential_energy(scene_, s);
+  }
+  [[nodiscard]] Eigen::Vector3d linear_momentum(const SceneState& s) const override {
+    return tumble::linear_momentum(scene_, s);
+  }
+  [[nodiscard]] Eigen::Vector3d angular_momentum(const SceneState& s) const override {
+    return tumble::angular_momentum(scene_, s);
+  }
+  [[nodiscard]] double constraint_drift(const SceneState& s) const override {
+    return tumble::constraint_drift(scene_, s);
+  }
+  [[nodiscard]] Eigen::Matrix3d rotation(int id, const SceneState& s) const override {
+    return std::visit([&](auto b) { return tumble::rotation(scene_, b, s); }, ids_.at(id));
+  }
+  [[nodiscard]] Eigen::Vector3d omega(int id, const SceneState& s) const override {
+    return std::visit([&](auto b) { return tumble::omega(scene_, b, s); }, ids_.at(id));
+  }
+  [[nodiscard]] Eigen::Vector3d position(int id, const SceneState& s) const override {
+    return std::visit([&](auto b) { return tumble::position(scene_, b, s); }, ids_.at(id));
+  }
+  [[nodiscard]] Eigen::Vector3d velocity(int id, const SceneState& s) const override {
+    return std::visit([&](auto b) { return tumble::velocity(scene_, b, s); }, ids_.at(id));
+  }
+  [[nodiscard]] Eigen::Vector3d reaction_force(int id, const SceneState& s,
+                                               double t) const override {
+    const auto* b = std::get_if<BodyId<Fixed>>(&ids_.at(id));
+    if (b == nullptr) {
+      throw std::invalid_argument("tumble.Scene.reaction_force: body " + std::to_string(id) +
+                                  " is not held at a fixed point");
+    }
+    return tumble::reaction_force(scene_, *b, s, t);
+  }
+  [[nodiscard]] Eigen::VectorXd rhs(double t, const SceneState& s) const override {
+    SceneWorkspace<SceneT> ws(scene_);
+    Eigen::VectorXd ydot(scene_.size());
+    tumble::rhs(scene_, ws, t, s, ydot);
+    return ydot;
+  }
+
+  [[nodiscard]] RawTrajectory integrate(double t0, const SceneState& s0,
+                                        const std::vector<double>& times,
+                                        const RunOptions& o) const override {
+    RawTrajectory out;
+    const auto observe = [&](double t, const SceneState& s) {
+      out.t.push_back(t);
+      out.y.insert(out.y.end(), s.y.data(), s.y.data() + s.y.size());
+      for (const Eigen::Matrix3d& b : s.base) {
+        for (int i = 0; i < 3; ++i) {
+          for (int j = 0; j < 3; ++j) {
+            out.bases.push_back(b(i, j));  // row-major, as NumPy prints it
+          }
+        }
+      }
+      record(s, out.bodies);
+      out.energy.push_back(tumble::energy(scene_, s));
+    };
+    with_integrator(o, t0, s0, [&](auto& integrator, const std::string& method) {
+      integrator.integrate(times, observe);
+      out.statistics = statistics(integrator, method);
+    });
+    return out;
+  }
+
+  [[nodiscard]] RawEnsemble ensemble(double t0, const std::vector<double>& y0, std::size_t runs,
+                                     const std::vector<double>& times, const RunOptions& o,
+                                     int threads) const override {
+    const auto n = static_cast<std::size_t>(scene_.size());
+    const std::size_t per_time = n + ids_.size() * kRecordPerBody + 1;
+    const auto initial = [&](std::size_t i) {
+      SceneState s = scene_.initial_state();
+      s.y = Eigen::Map<const Eigen::VectorXd>(y0.data() + i * n, static_cast<Eigen::Index>(n));
+      return s;
+    };
+    const auto observe = [&](std::vector<double>& r, std::size_t, double, const SceneState& s) {
+      r.insert(r.end(), s.y.data(), s.y.data() + s.y.size());
+      record(s, r);
+      r.push_back(tumble::energy(scene_, s));
+    };
+    RawEnsemble out;
+    const auto run = [&](auto make) {
+      const Ensemble ensemble(scene_, make, {.threads = threads});
+      const auto outcomes =
+          ensemble.template integrate<std::vector<double>>(runs, initial, t0, times, observe);
+      out.threads = ensemble.statistics().threads;
+      const std::size_t body_values = ids_.size() * kRecordPerBody;
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      out.y.assign(runs * times.size() * n, nan);
+      out.bodies.assign(runs * times.size() * body_values, nan);
+      out.energy.assign(runs * times.size(), nan);
+      for (std::size_t i = 0; i < runs; ++i) {
+        if (outcomes[i].failed()) {
+          out.errors.emplace_back(i, outcomes[i].error().message);
+          continue;
+        }
+        const std::vector<double>& r = outcomes[i].value();
+        for (std::size_t k = 0; k < times.size(); ++k) {
+          const double* at = r.data() + k * per_time;
+          std::copy(at, at + n,
+                    out.y.begin() + static_cast<std::ptrdiff_t>((i * times.size() + k) * n));
+          std::copy(at + n, at + n + body_values,
+                    out.bodies.begin() +
+                        static_cast<std::ptrdiff_t>((i * times.size() + k) * body_values));
+          out.energy[i * times.size() + k] = at[n + body_values];
+        }
+      }
+    };
+    const std::string& m = o.method;
+    if (m == "auto") {
+      const AutoOptions opt = auto_options(o);
+      run([opt](const SceneT& s, double t, const SceneState& y) {
+        return AutoIntegrator<SceneT>(s, t, y, opt);
+      });
+    } else if (m == "bdf" || m == "adams") {
+      const SceneIntegratorOptions opt = cvode_options(o);
+      run([opt](const SceneT& s, double t, const SceneState& y) {
+        return SceneIntegrator<SceneT>(s, t, y, opt);
+      });
+    } else {
+      const OdeintOptions opt = odeint_options(o);
+      run([opt](const SceneT& s, double t, const SceneState& y) {
+        return OdeintIntegrator<SceneT>(s, t, y, opt);
+      });
+    }
+    return out;
+  }
+
+ private:
+  void record(const SceneState& s, std::vector<double>& out) const {
+    for (const Id& id : ids_) {
+      std::visit(
+          [&](auto b) {
+            const Eigen::Vector3d r = tumble::position(scene_, b, s);
+            Eigen::Quaterniond q(tumble::rotation(scene_, b, s));
+            if (q.w() < 0) {
+              q.coeffs() = -q.coeffs();
+            }
+            const Eigen::Vector3d v = tumble::velocity(scene_, b, s);
+            const Eigen::Vector3d w = tumble::omega(scene_, b, s);
+            out.insert(out.end(), {r(0), r(1), r(2), q.w(), q.x(), q.y(), q.z(), v(0), v(1), v(2),
+                                   w(0), w(1), w(2)});
+          },
+          id);
+    }
+  }
+
+  template <class O> static O shared(const RunOptions& o) {
+    O opt;
+    opt.rtol = o.rtol;
+    opt.atol = o.atol;
+    opt.max_steps = o.max_steps;
+    opt.initial_step = o.initial_step;
+    if (o.max_step > 0) {
+      opt.max_step = o.max_step;
+    }
+    return opt;
+  }
+  static AutoOptions auto_options(const RunOptions& o) { return shared<AutoOptions>(o); }
+  static SceneIntegratorOptions cvode_options(const RunOptions& o) {
+    auto opt = shared<SceneIntegratorOptions>(o);
+    opt.method = o.method == "adams" ? CvodeMethod::adams : CvodeMethod::bdf;
+    return opt;
+  }
+  static OdeintOptions odeint_options(const RunOptions& o) {
+    auto opt = shared<OdeintOptions>(o);
+    if (o.method == "fehlberg78") {
+      opt.method = OdeintMethod::fehlberg78;
+    } else if (o.method == "dopri5") {
+      opt.method = OdeintMethod::dopri5;
+    } else if (o.method == "cash_karp54") {
+      opt.method = OdeintMethod::cash_karp54;
+    } else {
+      throw std::invalid_argument("tumble: unknown method '" + o.method +
+                                  "'; known: auto, fehlberg78, dopri5, cash_karp54, bdf, adams");
+    }
+    return opt;
+  }
+
+  /// Calls f(integrator, method name) with the integrator the options name.
+  template <class F>
+  void with_integrator(const RunOptions& o, double t0, const SceneState& s0, F&& f) const {
+    if (o.method == "auto") {
+      AutoIntegrator<SceneT> integrator(scene_, t0, s0, auto_options(o));
+      f(integrator, std::string());
+    } else if (o.method == "bdf" || o.method == "adams") {
+      SceneIntegrator<SceneT> integrator(scene_, t0, s0, cvode_options(o));
+      f(integrator, o.method == "bdf" ? std::string("BDF (SceneIntegrator, CVODE)")
+                                      : std::string("Adams (SceneIntegrator, CVODE)"));
+    } else {
+      const OdeintOptions opt = odeint_options(o);
+      OdeintIntegrator<SceneT> integrator(scene_, t0, s0, opt);
+      f(integrator, o.method + " (OdeintIntegrator)");
+    }
+  }
+
+  template <class Integrator>
+  static RunStatistics statistics(const Integrator& integrator, const std::string& method) {
+    const auto st = integrator.statistics();
+    RunStatistics r;
+    r.steps = st.steps;
+    r.rejected_steps = st.rejected_steps;
+    r.rhs_evals = st.rhs_evals;
+    r.chart_switches = st.chart_switches;
+    r.projections = st.projections;
+    r.events = st.events;
+    if constexpr (std::is_same_v<std::decay_t<decltype(st)>, AutoStatistics>) {
+      for (const MethodChoice& c : st.choices) {
+        r.choices.emplace_back(name(c.method), c.from, c.why);
+      }
+      r.method = name(st.method());
+    } else {
+      r.method = method;
+      r.choices.emplace_back(method, 0.0, "asked for");
+    }
+    return r;
+  }
+
+  SceneT scene_;
+  std::vector<Id> ids_;
+};
+
+}  // namespace tumble::python::detail
