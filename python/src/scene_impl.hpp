@@ -206,23 +206,7 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
         }
       }
     };
-    const std::string& m = o.method;
-    if (m == "auto") {
-      const AutoOptions opt = auto_options(o);
-      run([opt](const SceneT& s, double t, const SceneState& y) {
-        return AutoIntegrator<SceneT>(s, t, y, opt);
-      });
-    } else if (m == "bdf" || m == "adams") {
-      const SceneIntegratorOptions opt = cvode_options(o);
-      run([opt](const SceneT& s, double t, const SceneState& y) {
-        return SceneIntegrator<SceneT>(s, t, y, opt);
-      });
-    } else {
-      const OdeintOptions opt = odeint_options(o);
-      run([opt](const SceneT& s, double t, const SceneState& y) {
-        return OdeintIntegrator<SceneT>(s, t, y, opt);
-      });
-    }
+    with_factory(o, [&](auto make, const std::string&) { run(make); });
     return out;
   }
 
@@ -277,21 +261,39 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
     return opt;
   }
 
-  /// Calls f(integrator, method name) with the integrator the options name.
+  /// Calls f(make, method name) with make(scene, t0, s0) constructing the integrator the options
+  /// name (the method's name empty for the front door, whose statistics say what ran). The one
+  /// place where the method's name chooses an integrator: single runs and ensembles share it.
+  template <class F> static void with_factory(const RunOptions& o, F&& f) {
+    if (o.method == "auto") {
+      f(
+          [opt = auto_options(o)](const SceneT& s, double t, const SceneState& y) {
+            return AutoIntegrator<SceneT>(s, t, y, opt);
+          },
+          std::string());
+    } else if (o.method == "bdf" || o.method == "adams") {
+      f(
+          [opt = cvode_options(o)](const SceneT& s, double t, const SceneState& y) {
+            return SceneIntegrator<SceneT>(s, t, y, opt);
+          },
+          o.method == "bdf" ? std::string("BDF (SceneIntegrator, CVODE)")
+                            : std::string("Adams (SceneIntegrator, CVODE)"));
+    } else {
+      f(
+          [opt = odeint_options(o)](const SceneT& s, double t, const SceneState& y) {
+            return OdeintIntegrator<SceneT>(s, t, y, opt);
+          },
+          o.method + " (OdeintIntegrator)");
+    }
+  }
+
+  /// Calls f(integrator, method name) with the integrator the options name, from (t0, s0).
   template <class F>
   void with_integrator(const RunOptions& o, double t0, const SceneState& s0, F&& f) const {
-    if (o.method == "auto") {
-      AutoIntegrator<SceneT> integrator(scene_, t0, s0, auto_options(o));
-      f(integrator, std::string());
-    } else if (o.method == "bdf" || o.method == "adams") {
-      SceneIntegrator<SceneT> integrator(scene_, t0, s0, cvode_options(o));
-      f(integrator, o.method == "bdf" ? std::string("BDF (SceneIntegrator, CVODE)")
-                                      : std::string("Adams (SceneIntegrator, CVODE)"));
-    } else {
-      const OdeintOptions opt = odeint_options(o);
-      OdeintIntegrator<SceneT> integrator(scene_, t0, s0, opt);
-      f(integrator, o.method + " (OdeintIntegrator)");
-    }
+    with_factory(o, [&](auto make, const std::string& method) {
+      auto integrator = make(scene_, t0, s0);
+      f(integrator, method);
+    });
   }
 
   template <class Integrator>

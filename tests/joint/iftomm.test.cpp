@@ -235,6 +235,24 @@ TEST_CASE("IFToMM A04: Bricard's mechanism, redundant, against its non-redundant
   Bricard<Universal> twin;
   CHECK(six.scene.constraint_count() == 30);
   CHECK(twin.scene.constraint_count() == 29);
+  {
+    // Frozen as the integrators freeze it: one row left out, no reaction on it, and the rank
+    // counted without it (the frozen row factors with a unit pivot).
+    SceneWorkspace<Bricard<>::SceneT> ws(six.scene);
+    const SceneState s = six.scene.initial_state();
+    CHECK(detail::freeze_redundant_rows(six.scene, ws, s.y, s.base) == 1);
+    SceneState moved = s;
+    int iterations = 0;
+    const ConstraintResidual r = detail::project_constraints(
+        six.scene, ws, moved.y, moved.base, 1e-13, 8, [](int) { return true; }, iterations);
+    CHECK(r.rank == 29);
+    rhs(six.scene, ws, 0.0, s, Eigen::VectorXd(six.scene.size()));
+    for (std::size_t i = 0; i < ws.joints().dependent.size(); ++i) {
+      if (ws.joints().dependent[i]) {
+        CHECK(ws.joints().lambda(static_cast<Eigen::Index>(i)) == 0.0);
+      }
+    }
+  }
   // The rods swing through a position where a second row of the six hinges becomes dependent
   // for an instant (near t = 1.37 s); the twin has no such position. With the redundant row
   // found anew at each evaluation, the explicit run stopped there (the step size collapsed);

@@ -155,6 +155,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     check_state(s, t);
     const ChartBases old = base_;
     const State x_old = x_;
+    const std::vector<char> rows_old = ws_.joints().dependent;  // the frozen redundant rows
     try {
       Eigen::Map<Vec>(x_.data(), size()) = s.y;
       base_ = s.base;
@@ -168,6 +169,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     } catch (const NonFiniteError& e) {
       base_ = old;
       x_ = x_old;
+      ws_.joints().dependent = rows_old;
       throw std::invalid_argument(std::string("tumble::OdeintIntegrator::reset: the scene cannot "
                                               "be evaluated at this state: ") +
                                   e.what());
@@ -343,14 +345,10 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     return changed || recentered;
   }
 
-  /// 1 when x is finite and no chart ends deeper in its switch zone than half its width; else
-  /// the fraction of the step to retry with (scene/charts.hpp, chart_step_fraction).
+  /// 1 when no chart of the (finite: step_with checked it) trial state x ends deeper in its
+  /// switch zone than half its width; else the fraction of the step to retry with
+  /// (scene/charts.hpp, chart_step_fraction).
   double acceptable(const State& x) {
-    for (const double v : x) {
-      if (!std::isfinite(v)) {
-        return 0.25;
-      }
-    }
     return chart_step_fraction(*scene_, map(x_), map(x), deep_, g0_, g_);
   }
 

@@ -245,6 +245,8 @@ template <class SceneT> class SceneSystem {
       detail::freeze_redundant_rows(*scene_, ws_, y, bases());
     }
   }
+  /// The frozen rows (JointScratch::dependent), to restore after a restart that failed.
+  [[nodiscard]] std::vector<char>& redundant_rows() { return ws_.joints().dependent; }
 
   /// Re-centers the charts of y (and base_) that are in their switch zone; true if any changed.
   template <class Y> bool recenter(Y&& y) {
@@ -338,6 +340,7 @@ template <class SceneT> class SceneIntegrator {
     check_state(scene(), s, "reset");
     SceneSystem& sys = cvode_.system();
     const ChartBases old = state_.base;  // the bases in force, if the restart fails
+    const std::vector<char> rows_old = sys.redundant_rows();  // and the frozen redundant rows
     try {
       Eigen::VectorXd y = s.y;
       sys.set_bases(s.base);
@@ -346,6 +349,7 @@ template <class SceneT> class SceneIntegrator {
       cvode_.reset(t, y);
     } catch (...) {
       sys.set_bases(old);
+      sys.redundant_rows() = rows_old;
       throw;
     }
     sync();

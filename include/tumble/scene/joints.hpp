@@ -87,6 +87,18 @@ void joint_responses(const SceneT& scene, SceneWorkspace<SceneT>& ws, Mobile&& m
   });
 }
 
+/// The pivots of the dense factorization that count as zero: |d| <= this.
+inline double dense_rank_threshold(const JointScratch& j) {
+  const auto& d = j.ldlt.vectorD();
+  return kRankTolerance * (d.size() > 0 ? d.cwiseAbs().maxCoeff() : 0.0);
+}
+
+/// The rows frozen as dependent (JointScratch::dependent). Their identity rows factor with unit
+/// pivots, which the rank counts do not count.
+inline int frozen_rows(const JointScratch& j) {
+  return static_cast<int>(std::count(j.dependent.begin(), j.dependent.end(), char(1)));
+}
+
 /// A = J B J^T from the pairs of joint rows that share a body, Jacobi-scaled (unit diagonal, so
 /// that the rank test compares like with like whatever the rows' units, m or rad, and the
 /// bodies' masses; a zero diagonal, a row no mobile body can change, stays zero), then factored:
@@ -155,7 +167,7 @@ inline void joint_schur(JointScratch& j) {
       j.band(i, k) *= j.work(i) * j.work(i - k);
     }
   }
-  j.rank = 0;
+  j.rank = -frozen_rows(j);
   for (Eigen::Index c = 0; c < m; ++c) {
     double d = j.band(c, 0);
     for (Eigen::Index k = std::max<Eigen::Index>(0, c - bw); k < c; ++k) {
@@ -210,8 +222,8 @@ inline void joint_solve(JointScratch& j, const Eigen::VectorXd& b, Eigen::Vector
   x = j.ldlt.transpositionsP() * x;
   j.ldlt.matrixL().solveInPlace(x);
   const auto& d = j.ldlt.vectorD();
-  const double tol = kRankTolerance * (d.size() > 0 ? d.cwiseAbs().maxCoeff() : 0.0);
-  j.rank = 0;
+  const double tol = dense_rank_threshold(j);
+  j.rank = -frozen_rows(j);
   for (Eigen::Index i = 0; i < d.size(); ++i) {
     if (std::abs(d(i)) > tol) {
       x(i) /= d(i);
@@ -255,7 +267,7 @@ inline int freeze_dependent(JointScratch& j) {
     std::swap(perm[static_cast<std::size_t>(k)], perm[static_cast<std::size_t>(t.coeff(k))]);
   }
   const auto& d = j.ldlt.vectorD();
-  const double tol = kRankTolerance * (d.size() > 0 ? d.cwiseAbs().maxCoeff() : 0.0);
+  const double tol = dense_rank_threshold(j);
   for (Eigen::Index i = 0; i < m; ++i) {
     if (!(std::abs(d(i)) > tol)) {
       mark(perm[static_cast<std::size_t>(i)]);
