@@ -4,8 +4,17 @@
 
 find_package(benchmark QUIET)
 if(benchmark_FOUND)
-  add_executable(tumble_micro micro/micro.cpp micro/baselines.cpp micro/jacobian.cpp
-                              micro/chain.cpp)
+  add_executable(
+    tumble_micro
+    micro/micro.cpp
+    micro/params_euler_parameters.cpp
+    micro/params_rodrigues.cpp
+    micro/params_rotation_vector.cpp
+    micro/params_tait_bryan.cpp
+    micro/params_proper_euler.cpp
+    micro/baselines.cpp
+    micro/jacobian.cpp
+    micro/chain.cpp)
   target_link_libraries(tumble_micro PRIVATE tumble::tumble tumble_project_options
                         benchmark::benchmark)
   # Sources include each other by their path under benchmarks/ ("micro/common.hpp").

@@ -15,9 +15,10 @@
 //   hand_written_loads/EulerParameters/centroid  centroidal Euler-parameter body written by hand,
 //                                       for a given wrench (against qddot/...) and with the same
 //                                       loads assembled by hand (against qddot_loads/...);
-//                                       registered in this file so that floor and subject are
-//                                       compiled in one translation unit and run by the same
-//                                       harness on the same data.
+//                                       registered with Euler parameters, in one translation
+//                                       unit, and run by the same harness on the same data.
+// Each family of parameterizations is registered from a source of its own (micro/params_*.cpp,
+// micro/register.hpp: compiled as a user's translation unit is).
 // R and G do not depend on the reference point and are timed once per parameterization. The
 // dense-LU baseline is in micro/baselines.cpp, the peers in
 // peers/pinocchio_micro.cpp and peers/mujoco_micro.cpp; benchmarks/micro/summarize.py turns the
@@ -25,112 +26,18 @@
 // of its short list. micro/jacobian.cpp times the scene's Jacobian (automatic differentiation)
 // against difference quotients.
 
-#include <cstdio>
-#include <cstdlib>
 #include <string>
-#include <string_view>
 
 #include "micro/common.hpp"
-#include "micro/floor.hpp"
 
 namespace tumble::bench {
-namespace {
 
-template <class P> void register_orientation() {
-  const std::string name(P::name);
-  using Body = RigidBody<P, ReferencePoint::centroid, double>;
-  add("rotation/" + name, [](benchmark::State& st) {
-    static const States<Body> s;
-    run_cycling(st, [&](std::size_t i) { return P::rotation(Body::theta(s.q[i])); });
-  });
-  add("G/" + name, [](benchmark::State& st) {
-    static const States<Body> s;
-    run_cycling(st, [&](std::size_t i) { return P::G(Body::theta(s.q[i])); });
-  });
-}
-
-template <class P, ReferencePoint Ref> void register_body() {
-  using Body = RigidBody<P, Ref, double>;
-  const std::string suffix = std::string("/") + std::string(P::name) + "/" + ref_name(Ref);
-  add("mass_matrix" + suffix, [](benchmark::State& st) {
-    static const States<Body> s;
-    const Body body(mass_properties<Ref>());
-    run_cycling(st, [&](std::size_t i) { return body.mass_matrix(s.q[i]); });
-  });
-  add("centrifugal_coriolis" + suffix, [](benchmark::State& st) {
-    static const States<Body> s;
-    const Body body(mass_properties<Ref>());
-    run_cycling(st, [&](std::size_t i) { return body.centrifugal_coriolis(s.q[i], s.qdot[i]); });
-  });
-  add("generalized_force" + suffix, [](benchmark::State& st) {
-    static const States<Body> s;
-    const Body body(mass_properties<Ref>());
-    const LoadSet l;
-    run_cycling(st, [&](std::size_t i) {
-      return tumble::generalized_force(body, 0.0, s.q[i], s.qdot[i], l.gravity, l.force, l.moment);
-    });
-  });
-  add("qddot" + suffix, [](benchmark::State& st) {
-    static const States<Body> s;
-    const Body body(mass_properties<Ref>());
-    run_cycling(st,
-                [&](std::size_t i) { return body.accelerations(s.q[i], s.qdot[i], s.wrench[i]); });
-  });
-  add("qddot_loads" + suffix, [](benchmark::State& st) {
-    static const States<Body> s;
-    const Body body(mass_properties<Ref>());
-    const LoadSet l;
-    run_cycling(st, [&](std::size_t i) {
-      return tumble::accelerations(body, 0.0, s.q[i], s.qdot[i], l.gravity, l.force, l.moment);
-    });
-  });
-}
-
-/// The floor, checked against tumble on every state first (see micro/floor.hpp).
-void register_hand_written() {
-  using Body = RigidBody<EulerParameters, ReferencePoint::centroid, double>;
-  {
-    const States<Body> s;
-    const Body body(mass_properties<ReferencePoint::centroid>());
-    const HandWritten h;
-    const LoadSet l;
-    for (std::size_t i = 0; i < kStates; ++i) {
-      const auto a = body.accelerations(s.q[i], s.qdot[i], s.wrench[i]);
-      const auto b = h.accelerations(s.q[i], s.qdot[i], s.wrench[i].force, s.wrench[i].moment);
-      const auto c =
-          tumble::accelerations(body, 0.0, s.q[i], s.qdot[i], l.gravity, l.force, l.moment);
-      const auto d = h.accelerations_loads(s.q[i], s.qdot[i]);
-      if (!((a - b).norm() <= 1e-10 * (1.0 + a.norm())) ||
-          !((c - d).norm() <= 1e-10 * (1.0 + c.norm()))) {
-        std::fprintf(stderr,
-                     "tumble_micro: the hand-written closed form and tumble disagree, "
-                     "state %zu\n",
-                     i);
-        std::exit(2);
-      }
-    }
-  }
-  add("hand_written/EulerParameters/centroid", [](benchmark::State& st) {
-    static const States<Body> s;
-    const HandWritten h;
-    run_cycling(st, [&](std::size_t i) {
-      return h.accelerations(s.q[i], s.qdot[i], s.wrench[i].force, s.wrench[i].moment);
-    });
-  });
-  add("hand_written_loads/EulerParameters/centroid", [](benchmark::State& st) {
-    static const States<Body> s;
-    const HandWritten h;
-    run_cycling(st, [&](std::size_t i) { return h.accelerations_loads(s.q[i], s.qdot[i]); });
-  });
-}
-
-template <class... P> void register_all() {
-  (register_orientation<P>(), ...);
-  (register_body<P, ReferencePoint::centroid>(), ...);
-  (register_body<P, ReferencePoint::offset>(), ...);
-}
-
-}  // namespace
+// One source per family of parameterizations (micro/register.hpp says why).
+void register_euler_parameters();
+void register_rodrigues();
+void register_rotation_vector();
+void register_tait_bryan();
+void register_proper_euler();
 
 void register_tumble() {
   // The loop itself (load an index, keep a result): what every number below includes.
@@ -138,10 +45,11 @@ void register_tumble() {
     const auto& raw = raw_states();
     run_cycling(st, [&](std::size_t i) { return raw[i].omega; });
   });
-  register_all<EulerParameters, RodriguesParameters, ModifiedRodriguesParameters, RotationVector,
-               EulerXYZ, EulerXZY, EulerYXZ, EulerYZX, EulerZXY, EulerZYX, EulerXYX, EulerXZX,
-               EulerYXY, EulerYZY, EulerZXZ, EulerZYZ>();
-  register_hand_written();
+  register_euler_parameters();
+  register_rodrigues();
+  register_rotation_vector();
+  register_tait_bryan();
+  register_proper_euler();
 }
 
 }  // namespace tumble::bench
