@@ -23,10 +23,14 @@ struct Rgb {
 class PngPlot {
  public:
   PngPlot(int width, int height, std::string title)
-      : w_(width), h_(height), title_(std::move(title)), px_(std::size_t(width) * height, {255, 255, 255}) {}
+      : w_(width),
+        h_(height),
+        title_(std::move(title)),
+        px_(std::size_t(width) * height, {255, 255, 255}) {}
 
   /// Add a curve (x, y samples) with a legend label.
-  void add(const std::vector<double>& x, const std::vector<double>& y, Rgb color, std::string label) {
+  void add(const std::vector<double>& x, const std::vector<double>& y, Rgb color,
+           std::string label) {
     series_.push_back({x, y, color, std::move(label)});
   }
   void set_labels(std::string xlabel, std::string ylabel) {
@@ -104,7 +108,8 @@ class PngPlot {
     text(ylabel_, 4, top - 14, {0, 0, 0});
     int ly = top + 8;
     for (const Series& s : series_) {  // legend
-      for (int d = 0; d < 3; ++d) line(right - 110, ly + 3 + d - 1, right - 90, ly + 3 + d - 1, s.color);
+      for (int d = 0; d < 3; ++d)
+        line(right - 110, ly + 3 + d - 1, right - 90, ly + 3 + d - 1, s.color);
       text(s.label, right - 84, ly, {0, 0, 0});
       ly += 14;
     }
@@ -146,22 +151,22 @@ class PngPlot {
   static const std::array<std::uint8_t, 7>* glyph(char ch) {
     static const std::string chars = "0123456789.-+e()/=abcdefghijklmnopqrstuvwxyz,:_ ";
     static const std::array<std::uint8_t, 7> g[] = {
-        {14, 17, 19, 21, 25, 17, 14}, {4, 12, 4, 4, 4, 4, 14},    {14, 17, 1, 2, 4, 8, 31},
-        {31, 2, 4, 2, 1, 17, 14},     {2, 6, 10, 18, 31, 2, 2},   {31, 16, 30, 1, 1, 17, 14},
-        {6, 8, 16, 30, 17, 17, 14},   {31, 1, 2, 4, 8, 8, 8},     {14, 17, 17, 14, 17, 17, 14},
-        {14, 17, 17, 15, 1, 2, 12},   {0, 0, 0, 0, 0, 12, 12},    {0, 0, 0, 31, 0, 0, 0},
-        {0, 4, 4, 31, 4, 4, 0},       {0, 0, 14, 17, 31, 16, 14}, {2, 4, 8, 8, 8, 4, 2},
-        {8, 4, 2, 2, 2, 4, 8},        {1, 1, 2, 4, 8, 16, 16},    {0, 0, 31, 0, 31, 0, 0},
+        {14, 17, 19, 21, 25, 17, 14}, {4, 12, 4, 4, 4, 4, 14},      {14, 17, 1, 2, 4, 8, 31},
+        {31, 2, 4, 2, 1, 17, 14},     {2, 6, 10, 18, 31, 2, 2},     {31, 16, 30, 1, 1, 17, 14},
+        {6, 8, 16, 30, 17, 17, 14},   {31, 1, 2, 4, 8, 8, 8},       {14, 17, 17, 14, 17, 17, 14},
+        {14, 17, 17, 15, 1, 2, 12},   {0, 0, 0, 0, 0, 12, 12},      {0, 0, 0, 31, 0, 0, 0},
+        {0, 4, 4, 31, 4, 4, 0},       {0, 0, 14, 17, 31, 16, 14},   {2, 4, 8, 8, 8, 4, 2},
+        {8, 4, 2, 2, 2, 4, 8},        {1, 1, 2, 4, 8, 16, 16},      {0, 0, 31, 0, 31, 0, 0},
         {0, 0, 14, 1, 15, 17, 15},    {16, 16, 22, 25, 17, 17, 30}, {0, 0, 14, 16, 16, 17, 14},
-        {1, 1, 13, 19, 17, 17, 15},   {0, 0, 14, 17, 31, 16, 14}, {6, 9, 8, 28, 8, 8, 8},
+        {1, 1, 13, 19, 17, 17, 15},   {0, 0, 14, 17, 31, 16, 14},   {6, 9, 8, 28, 8, 8, 8},
         {0, 0, 15, 16, 19, 17, 15},   {16, 16, 22, 25, 17, 17, 17}, {4, 0, 12, 4, 4, 4, 14},
         {2, 0, 6, 2, 2, 18, 12},      {16, 16, 18, 20, 24, 20, 18}, {12, 4, 4, 4, 4, 4, 14},
-        {0, 0, 26, 21, 21, 17, 17},   {0, 0, 22, 25, 17, 17, 17}, {0, 0, 14, 17, 17, 17, 14},
-        {0, 0, 30, 17, 30, 16, 16},   {0, 0, 13, 19, 15, 1, 1},   {0, 0, 22, 25, 16, 16, 16},
-        {0, 0, 14, 16, 14, 1, 30},    {8, 8, 28, 8, 8, 9, 6},     {0, 0, 17, 17, 17, 19, 13},
-        {0, 0, 17, 17, 17, 10, 4},    {0, 0, 17, 17, 21, 21, 10}, {0, 0, 17, 10, 4, 10, 17},
-        {0, 0, 17, 17, 15, 1, 14},    {0, 0, 31, 2, 4, 8, 31},    {0, 0, 0, 0, 12, 4, 8},
-        {0, 12, 12, 0, 12, 12, 0},    {0, 0, 0, 0, 0, 0, 31},     {0, 0, 0, 0, 0, 0, 0}};
+        {0, 0, 26, 21, 21, 17, 17},   {0, 0, 22, 25, 17, 17, 17},   {0, 0, 14, 17, 17, 17, 14},
+        {0, 0, 30, 17, 30, 16, 16},   {0, 0, 13, 19, 15, 1, 1},     {0, 0, 22, 25, 16, 16, 16},
+        {0, 0, 14, 16, 14, 1, 30},    {8, 8, 28, 8, 8, 9, 6},       {0, 0, 17, 17, 17, 19, 13},
+        {0, 0, 17, 17, 17, 10, 4},    {0, 0, 17, 17, 21, 21, 10},   {0, 0, 17, 10, 4, 10, 17},
+        {0, 0, 17, 17, 15, 1, 14},    {0, 0, 31, 2, 4, 8, 31},      {0, 0, 0, 0, 12, 4, 8},
+        {0, 12, 12, 0, 12, 12, 0},    {0, 0, 0, 0, 0, 0, 31},       {0, 0, 0, 0, 0, 0, 0}};
     const char lower = (ch >= 'A' && ch <= 'Z') ? char(ch - 'A' + 'a') : ch;
     const auto pos = chars.find(lower);
     return pos == std::string::npos ? &g[chars.size() - 1] : &g[pos];
@@ -177,7 +182,8 @@ class PngPlot {
   }
 
   static void put32(std::vector<std::uint8_t>& v, std::uint32_t x) {
-    v.insert(v.end(), {std::uint8_t(x >> 24), std::uint8_t(x >> 16), std::uint8_t(x >> 8), std::uint8_t(x)});
+    v.insert(v.end(),
+             {std::uint8_t(x >> 24), std::uint8_t(x >> 16), std::uint8_t(x >> 8), std::uint8_t(x)});
   }
   static std::uint32_t crc32(const std::uint8_t* d, std::size_t n, std::uint32_t c = 0xffffffffu) {
     for (std::size_t i = 0; i < n; ++i) {
@@ -186,7 +192,8 @@ class PngPlot {
     }
     return c;
   }
-  static void chunk(std::vector<std::uint8_t>& png, const char* type, const std::vector<std::uint8_t>& data) {
+  static void chunk(std::vector<std::uint8_t>& png, const char* type,
+                    const std::vector<std::uint8_t>& data) {
     put32(png, std::uint32_t(data.size()));
     std::vector<std::uint8_t> td(type, type + 4);
     td.insert(td.end(), data.begin(), data.end());
@@ -199,7 +206,8 @@ class PngPlot {
     do {
       const std::size_t n = std::min<std::size_t>(65535, raw.size() - pos);
       z.push_back(pos + n == raw.size() ? 1 : 0);  // BFINAL, BTYPE = 00 (stored)
-      z.insert(z.end(), {std::uint8_t(n), std::uint8_t(n >> 8), std::uint8_t(~n), std::uint8_t(~n >> 8)});
+      z.insert(z.end(),
+               {std::uint8_t(n), std::uint8_t(n >> 8), std::uint8_t(~n), std::uint8_t(~n >> 8)});
       z.insert(z.end(), raw.begin() + std::ptrdiff_t(pos), raw.begin() + std::ptrdiff_t(pos + n));
       pos += n;
     } while (pos < raw.size());

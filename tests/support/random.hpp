@@ -14,7 +14,9 @@ class Random {
  public:
   explicit Random(std::uint64_t seed = 20261121) : gen_(seed) {}
 
-  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen_); }
+  double uniform(double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(gen_);
+  }
   double normal() { return std::normal_distribution<double>(0.0, 1.0)(gen_); }
 
   Eigen::Vector3d vector(double scale = 1.0) {
