@@ -7,7 +7,7 @@
 // momentarily gains N degrees of freedom) twice per turn. Also a slider-crank (revolute and
 // prismatic joints) against its closed-form position. And A04, Bricard's mechanism: redundant
 // constraints (30 rows of rank 29), against the same linkage with one hinge made a universal
-// joint (29 independent rows, the same motion).
+// joint (29 independent rows, the same motion). A03, Andrews' mechanism: andrews.test.cpp.
 
 #include <array>
 #include <cmath>
