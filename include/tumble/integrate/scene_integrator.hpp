@@ -16,7 +16,10 @@
 // - BDF's Newton iteration gets the exact Jacobian df/dy (dense or band) by automatic
 //   differentiation (scene/jacobian.hpp) when every load can be differentiated; otherwise, or
 //   with CvodeOptions::use_system_jacobian = false, CVODE forms it by difference quotients. With
-//   GMRES the same blocks give a block-Jacobi preconditioner (scene/preconditioner.hpp).
+//   GMRES the same blocks give a block-Jacobi preconditioner (scene/preconditioner.hpp). A
+//   mechanism (quasi-velocity form) gets its exact Jacobian in dense storage only: the
+//   multipliers couple every body of a loop or chain, so its Jacobian is dense there (band
+//   storage and GMRES keep CVODE's difference quotients and no preconditioner).
 // A NonFiniteError met in the right-hand side becomes a recoverable error: CVODE retries with a
 // smaller step, and reports an IntegrationError if it cannot recover.
 
@@ -25,9 +28,11 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
+#include "tumble/core/band_matrix.hpp"
 #include "tumble/core/cache_line.hpp"
 #include "tumble/core/errors.hpp"
 #include "tumble/integrate/common.hpp"
@@ -102,8 +107,11 @@ namespace detail {
 /// members). Lives in CVODE's core on the heap, so its address is stable.
 template <class SceneT> class SceneSystem {
   struct NoPreconditioner {};
+  /// The block-Jacobi preconditioner: the bodies' own blocks, which a mechanism's multipliers
+  /// couple (none for a mechanism).
+  static constexpr bool preconditionable = SceneT::differentiable && !SceneT::has_joints;
   using Preconditioner =
-      std::conditional_t<SceneT::differentiable, BlockPreconditioner<SceneT>, NoPreconditioner>;
+      std::conditional_t<preconditionable, BlockPreconditioner<SceneT>, NoPreconditioner>;
 
  public:
   SceneSystem(const SceneT& scene, ChartBases base, bool stabilize, bool with_preconditioner)
@@ -112,7 +120,7 @@ template <class SceneT> class SceneSystem {
         base_(std::move(base)),
         switches_(static_cast<std::size_t>(scene.body_count()), 0) {
     ws_.stabilize_constraints = stabilize;
-    if constexpr (SceneT::differentiable) {
+    if constexpr (preconditionable) {
       if (with_preconditioner) {
         preconditioner_.emplace(scene);
       }
@@ -173,11 +181,14 @@ template <class SceneT> class SceneSystem {
     return changed;
   }
 
-  /// J = df/dy by automatic differentiation, dense or band; only when every load of the scene can
-  /// be differentiated, otherwise CVODE forms J by difference quotients.
+  /// J = df/dy by automatic differentiation, dense or band (a mechanism's: dense); only when
+  /// every load of the scene can be differentiated, otherwise CVODE forms J by difference
+  /// quotients.
   template <class Jac>
-  requires SceneT::differentiable void jacobian(double t, ConstVectorMap y, ConstVectorMap /*fy*/,
-                                                Jac jac) {
+  requires(SceneT::differentiable &&
+           (!SceneT::has_joints ||
+            !std::is_same_v<Jac, BandMatrixMap>)) void jacobian(double t, ConstVectorMap y,
+                                                                ConstVectorMap /*fy*/, Jac jac) {
     try {
       tumble::jacobian(*scene_, ws_, t, y, bases(), jac);
     } catch (const NonFiniteError& e) {
@@ -187,7 +198,7 @@ template <class SceneT> class SceneSystem {
 
   /// The block-Jacobi preconditioner for GMRES: one LU of I - gamma J_kk per body.
   bool precondition_setup(double t, ConstVectorMap y, ConstVectorMap /*fy*/, bool jacobian_ok,
-                          double gamma) requires SceneT::differentiable {
+                          double gamma) requires preconditionable {
     try {
       if (!preconditioner_) [[unlikely]] {
         preconditioner_.emplace(*scene_);
@@ -199,7 +210,7 @@ template <class SceneT> class SceneSystem {
   }
   void precondition_solve(double /*t*/, ConstVectorMap /*y*/, ConstVectorMap /*fy*/,
                           ConstVectorMap r, VectorMap z, double /*gamma*/, double /*delta*/,
-                          int /*lr*/) requires SceneT::differentiable {
+                          int /*lr*/) requires preconditionable {
     try {
       preconditioner_->solve(r, z);
     } catch (const NonFiniteError& e) {

@@ -2,7 +2,7 @@
 // A joint written by the user: a callable that fills the M rows (C, J_a, J_b, gamma; see
 // concept.hpp) from the two bodies' kinematics, in double. As a user load, it cannot be
 // differentiated by tumble's forward-mode AD: a scene with one leaves CVODE's Jacobian to
-// difference quotients (as every scene with joints does today).
+// difference quotients (the other joints are written for any scalar type: scene/jacobian.hpp).
 
 #include <functional>
 #include <stdexcept>

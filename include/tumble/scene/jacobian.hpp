@@ -15,6 +15,9 @@
 // B = d (a_c, alpha) / dW has 6 rows, and a coupling seeds both blocks (N = nq_a + nq_b + 12).
 // The cost is linear in the number of bodies and couplings, and nothing is allocated. The chart
 // bases are constant between switches, so they enter as constants.
+// A mechanism (quasi-velocity form) adds the multipliers' derivative through the constraint solve
+// (mechanism_jacobian below): its Jacobian is dense where loops and chains reach, formed in
+// scratch of n x n sized at the first call.
 
 #include <cstddef>
 #include <span>
@@ -143,28 +146,32 @@ void add_coupling_rows(SceneWorkspace<SceneT>& ws, int id, int rows, const Wrenc
   add_block(jac, rows, offset_b, r.rightCols(N - na));
 }
 
+/// Body e's kinematics in Jet<N>, its block of y seeded along the directions [first, first +
+/// e.block_size): [q; rates].
+template <int N, class Entry, class Y>
+auto seeded_kinematics(const Entry& e, const Y& y, const Matrix3<double>& base, int first) {
+  using Body = std::remove_cvref_t<decltype(e.body)>;
+  constexpr int nq = Body::nq, nr = Entry::rate_size;
+  using J = Jet<N>;
+  const RigidBody<typename Body::Param, Body::reference, J> body(e.body);
+  BodyKinematics<J, Body::reference> k;
+  body_kinematics<Entry::form>(
+      body, Vector<J, nq>(seed<N>(y.template segment<nq>(e.offset), first)),
+      Vector<J, nr>(seed<N>(y.template segment<nr>(e.rates), first + nq)), base, true, k);
+  return k;
+}
+
 /// One coupling's blocks: dW/d(y_a, y_b) in Jet<na + nb> (the two bodies' blocks), times the
 /// gains B_a and B_b.
 template <class SceneT, class Load, class EntryA, class EntryB, class Y, class Jac>
 void coupling_block(SceneWorkspace<SceneT>& ws, const Load& load, const EntryA& ea,
                     const EntryB& eb, double t, const Y& y, std::span<const Matrix3<double>> base,
                     Jac& jac) {
-  using BodyA = std::remove_cvref_t<decltype(ea.body)>;
-  using BodyB = std::remove_cvref_t<decltype(eb.body)>;
-  constexpr int qa = BodyA::nq, qb = BodyB::nq;
   constexpr int ra = EntryA::rate_size, rb = EntryB::rate_size;
   constexpr int na = EntryA::block_size, N = na + EntryB::block_size;
   using J = Jet<N>;
-  const RigidBody<typename BodyA::Param, BodyA::reference, J> ba(ea.body);
-  const RigidBody<typename BodyB::Param, BodyB::reference, J> bb(eb.body);
-  BodyKinematics<J, BodyA::reference> ka;
-  BodyKinematics<J, BodyB::reference> kb;
-  body_kinematics<EntryA::form>(ba, Vector<J, qa>(seed<N>(y.template segment<qa>(ea.offset), 0)),
-                                Vector<J, ra>(seed<N>(y.template segment<ra>(ea.rates), qa)),
-                                base[ea.id], true, ka);
-  body_kinematics<EntryB::form>(bb, Vector<J, qb>(seed<N>(y.template segment<qb>(eb.offset), na)),
-                                Vector<J, rb>(seed<N>(y.template segment<rb>(eb.rates), na + qb)),
-                                base[eb.id], true, kb);
+  const auto ka = seeded_kinematics<N>(ea, y, base[ea.id], 0);
+  const auto kb = seeded_kinematics<N>(eb, y, base[eb.id], na);
   Wrench<J> wa, wb;
   load.apply(J(t), static_cast<const KinematicsView<J>&>(ka),
              static_cast<const KinematicsView<J>&>(kb), wa, wb);
@@ -172,45 +179,197 @@ void coupling_block(SceneWorkspace<SceneT>& ws, const Load& load, const EntryA& 
   add_coupling_rows<rb>(ws, eb.id, eb.rates, wb, ea.offset, eb.offset, na, jac);
 }
 
-/// The Jacobian of a scene into a sink (see jacobian() below).
-template <class SceneT>
-void scene_jacobian(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t,
-                    const Eigen::Map<const Eigen::VectorXd>& y,
-                    std::span<const Matrix3<double>> base, const JacobianSink& jac) {
-  if constexpr (SceneT::has_couplings) {
-    // The coupling wrenches at y, in double: the body blocks need their value.
-    detail::scene_kinematics(scene, ws, y, base);
-    scene.for_each_load([&](const auto& a) {
-      if constexpr (CouplingElement<std::remove_cvref_t<decltype(a.load)>>) {
-        a.load.apply(t, ws.view(a.a), ws.view(a.b), ws.wrench(a.a), ws.wrench(a.b));
-      }
-    });
+/// One joint of a mechanism at fixed multipliers, in Jet<N> over its bodies' blocks of y (a's,
+/// then b's; a's alone for a joint to the ground): its reactions -J_a^T lambda, -J_b^T lambda
+/// differentiated as a coupling's wrenches, times the gains, into `jac`; and the part of
+/// D = d(J nudot - gamma)/dy (fixed lambda) that comes from its own rows, dJ nudot - dgamma,
+/// into ws.joints().dlambda, with the bodies' accelerations nudot read from f = rhs(y).
+template <class SceneT, class Joint, class Y, class Jac, class EntryA, class... EntryB>
+void joint_block(SceneWorkspace<SceneT>& ws, const Joint& joint, int row, const Y& y,
+                 std::span<const Matrix3<double>> base, Jac& jac, const EntryA& ea,
+                 const EntryB&... eb) {
+  constexpr int m = Joint::size, na = EntryA::block_size;
+  constexpr int N = (na + ... + EntryB::block_size);
+  using J = Jet<N>;
+  JointScratch& js = ws.joints();
+  const auto ka = seeded_kinematics<N>(ea, y, base[ea.id], 0);
+  ConstraintRows<J, m> rows;
+  Vector<J, m> rate;  // J nudot - gamma
+  const auto nudot = [&](const auto& e) {
+    return Vector<J, 6>(js.f.template segment<6>(e.rates).template cast<J>());
+  };
+  if constexpr (sizeof...(EntryB) == 0) {
+    joint.evaluate(static_cast<const KinematicsView<J>&>(ka), ground_view<J>(), rows);
+    rate = rows.ja * nudot(ea) - rows.gamma;
+  } else {
+    const auto kb = seeded_kinematics<N>(eb..., y, base[eb.id]..., na);
+    joint.evaluate(static_cast<const KinematicsView<J>&>(ka),
+                   static_cast<const KinematicsView<J>&>(kb), rows);
+    rate = rows.ja * nudot(ea) + rows.jb * (nudot(eb), ...) - rows.gamma;
   }
+  const Vector<J, m> lambda = js.lambda.template segment<m>(row).template cast<J>();
+  const Matrix<double, m, N> d = derivatives(rate);
+  js.dlambda.block(row, ea.offset, m, na) += d.template leftCols<na>();
+  const Wrench<J> wa{-(rows.ja.template leftCols<3>().transpose() * lambda),
+                     -(rows.ja.template rightCols<3>().transpose() * lambda)};
+  if constexpr (sizeof...(EntryB) == 0) {
+    add_coupling_rows<6>(ws, ea.id, ea.rates, wa, ea.offset, 0, na, jac);
+  } else {
+    const int offset_b = (eb.offset, ...);
+    js.dlambda.block(row, offset_b, m, N - na) += d.template rightCols<N - na>();
+    const Wrench<J> wb{-(rows.jb.template leftCols<3>().transpose() * lambda),
+                       -(rows.jb.template rightCols<3>().transpose() * lambda)};
+    add_coupling_rows<6>(ws, ea.id, ea.rates, wa, ea.offset, offset_b, na, jac);
+    add_coupling_rows<6>(ws, (eb.id, ...), (eb.rates, ...), wb, ea.offset, offset_b, na, jac);
+  }
+}
+
+/// The Jacobian of a mechanism (quasi-velocity form) into a sink. With the reactions
+/// R_i = -J_i^T lambda in body i's wrench, f depends on y directly (K = df/dy at fixed lambda:
+/// the bodies' blocks, the couplings, and each joint's rows as a coupling's wrenches) and
+/// through lambda, which solves J nudot(y, lambda) = gamma(y). Differentiating that,
+///   (J B J^T) dlambda/dy = D,   D = d(J nudot - gamma)/dy at fixed lambda = dJ nudot - dgamma
+///                                   + J K_nudot (K's rows of the accelerations),
+/// solved column by column with the factorization of the right-hand side's solve (the same
+/// basic solution: the frozen and dependent rows get zero), and
+///   df_i/dy = K_i - B_i J_i^T dlambda/dy
+/// for the rows of body i's accelerations (B_i its gain). The multipliers couple every body of
+/// a loop or chain, so the result is dense there: it is formed in n x n scratch, sized at the
+/// first call.
+template <class SceneT>
+void mechanism_jacobian(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t,
+                        const Eigen::Map<const Eigen::VectorXd>& y,
+                        std::span<const Matrix3<double>> base, const JacobianSink& jac) {
+  JointScratch& js = ws.joints();
+  const Eigen::Index n = scene.size(), m = scene.constraint_count();
+  if (js.jac_fixed.rows() != n) {
+    js.jac_fixed.resize(n, n);
+    js.dlambda.resize(m, n);
+    js.f.resize(n);
+    js.column.resize(m);
+    js.solved.resize(m);
+  }
+  // f(y), lambda and the factorization of J B J^T (joints.hpp).
+  rhs(scene, ws, t, y, base, js.f);
+  // Every body's wrench but its one-body loads (body_block_in adds those in jets): the
+  // couplings' and the reactions at lambda.
+  scene_kinematics(scene, ws, y, base);
+  scene.for_each_load([&](const auto& a) {
+    if constexpr (CouplingElement<std::remove_cvref_t<decltype(a.load)>>) {
+      a.load.apply(t, ws.view(a.a), ws.view(a.b), ws.wrench(a.a), ws.wrench(a.b));
+    }
+  });
+  add_reactions(ws);
+  js.jac_fixed.setZero();
+  js.dlambda.setZero();
   scene.for_each_entry([&](const auto& e) {
-    using E = std::remove_cvref_t<decltype(e)>;
-    constexpr int nq = std::remove_cvref_t<decltype(e.body)>::nq, nb = E::block_size;
-    if constexpr (!E::quasi) {  // the rows of qdot: [0 I]
-      const Matrix<double, nq, nq> identity = Matrix<double, nq, nq>::Identity();
-      detail::add_block(jac, e.offset, e.rates, identity);
-    }
+    constexpr int nb = std::remove_cvref_t<decltype(e)>::block_size;
+    bool gain = !js.touches[e.id].empty();
     if constexpr (SceneT::has_couplings) {
-      if (scene.coupled(e.id)) {
-        detail::body_block_in<nb + 6>(scene, ws, e, t, y, base[e.id], jac);
-        return;
-      }
+      gain = gain || scene.coupled(e.id);
     }
-    detail::body_block_in<nb>(scene, ws, e, t, y, base[e.id], jac);
+    if (gain) {
+      body_block_in<nb + 6>(scene, ws, e, t, y, base[e.id], js.jac_fixed);
+    } else {
+      body_block_in<nb>(scene, ws, e, t, y, base[e.id], js.jac_fixed);
+    }
   });
   if constexpr (SceneT::has_couplings) {
     scene.for_each_load([&](const auto& at) {
       if constexpr (CouplingElement<std::remove_cvref_t<decltype(at.load)>>) {
         scene.visit_entry(at.a, [&](const auto& ea) {
           scene.visit_entry(at.b, [&](const auto& eb) {
-            detail::coupling_block(ws, at.load, ea, eb, t, y, base, jac);
+            coupling_block(ws, at.load, ea, eb, t, y, base, js.jac_fixed);
           });
         });
       }
     });
+  }
+  scene.for_each_joint([&](const auto& at) {
+    scene.visit_entry(at.a, [&](const auto& ea) {
+      if (at.b < 0) {
+        joint_block(ws, at.joint, at.row, y, base, js.jac_fixed, ea);
+      } else {
+        scene.visit_entry(at.b, [&](const auto& eb) {
+          joint_block(ws, at.joint, at.row, y, base, js.jac_fixed, ea, eb);
+        });
+      }
+    });
+  });
+  // D += J K_nudot, K complete now.
+  scene.for_each_entry([&](const auto& e) {
+    for (const JointScratch::Touch& tc : js.touches[e.id]) {
+      const auto& jr = tc.side == 0 ? js.ja : js.jb;
+      js.dlambda.middleRows(tc.row, tc.size).noalias() +=
+          jr.middleRows(tc.row, tc.size) * js.jac_fixed.middleRows(e.rates, 6);
+    }
+  });
+  for (Eigen::Index c = 0; c < n; ++c) {  // dlambda/dy, column by column
+    js.column = js.dlambda.col(c);
+    if (js.column.isZero(0.0)) {
+      continue;
+    }
+    joint_solve(js, js.column, js.solved);
+    js.dlambda.col(c) = js.solved;
+  }
+  scene.for_each_entry([&](const auto& e) {
+    for (const JointScratch::Touch& tc : js.touches[e.id]) {
+      const auto& jr = tc.side == 0 ? js.ja : js.jb;
+      for (int r = tc.row; r < tc.row + tc.size; ++r) {
+        const Vector<double, 6> response =
+            ws.gain(e.id).template topRows<6>() * jr.row(r).transpose();
+        js.jac_fixed.middleRows(e.rates, 6).noalias() -= response * js.dlambda.row(r);
+      }
+    }
+  });
+  jac.add_block(0, 0, js.jac_fixed);
+}
+
+/// The Jacobian of a scene into a sink (see jacobian() below).
+template <class SceneT>
+void scene_jacobian(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t,
+                    const Eigen::Map<const Eigen::VectorXd>& y,
+                    std::span<const Matrix3<double>> base, const JacobianSink& jac) {
+  if constexpr (SceneT::has_joints) {
+    static_assert(SceneT::form == StateForm::quasi_velocities,
+                  "a mechanism is differentiated in the quasi-velocity form");
+    mechanism_jacobian(scene, ws, t, y, base, jac);
+  } else {
+    if constexpr (SceneT::has_couplings) {
+      // The coupling wrenches at y, in double: the body blocks need their value.
+      detail::scene_kinematics(scene, ws, y, base);
+      scene.for_each_load([&](const auto& a) {
+        if constexpr (CouplingElement<std::remove_cvref_t<decltype(a.load)>>) {
+          a.load.apply(t, ws.view(a.a), ws.view(a.b), ws.wrench(a.a), ws.wrench(a.b));
+        }
+      });
+    }
+    scene.for_each_entry([&](const auto& e) {
+      using E = std::remove_cvref_t<decltype(e)>;
+      constexpr int nq = std::remove_cvref_t<decltype(e.body)>::nq, nb = E::block_size;
+      if constexpr (!E::quasi) {  // the rows of qdot: [0 I]
+        const Matrix<double, nq, nq> identity = Matrix<double, nq, nq>::Identity();
+        detail::add_block(jac, e.offset, e.rates, identity);
+      }
+      if constexpr (SceneT::has_couplings) {
+        if (scene.coupled(e.id)) {
+          detail::body_block_in<nb + 6>(scene, ws, e, t, y, base[e.id], jac);
+          return;
+        }
+      }
+      detail::body_block_in<nb>(scene, ws, e, t, y, base[e.id], jac);
+    });
+    if constexpr (SceneT::has_couplings) {
+      scene.for_each_load([&](const auto& at) {
+        if constexpr (CouplingElement<std::remove_cvref_t<decltype(at.load)>>) {
+          scene.visit_entry(at.a, [&](const auto& ea) {
+            scene.visit_entry(at.b, [&](const auto& eb) {
+              detail::coupling_block(ws, at.load, ea, eb, t, y, base, jac);
+            });
+          });
+        }
+      });
+    }
   }
 }
 

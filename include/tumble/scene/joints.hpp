@@ -301,6 +301,23 @@ inline void joint_displacements(const JointScratch& j, const Eigen::VectorXd& mu
   }
 }
 
+/// Adds each joint's reaction -J_a^T lambda, -J_b^T lambda (the rows and lambda in ws) to its
+/// bodies' wrenches.
+template <class SceneT> void add_reactions(SceneWorkspace<SceneT>& ws) {
+  const JointScratch& j = ws.joints();
+  for (Eigen::Index r = 0; r < j.lambda.size(); ++r) {
+    const double l = j.lambda(r);
+    Wrench<double>& wa = ws.wrench(j.joint_a[r]);
+    wa.force -= j.ja.row(r).template head<3>().transpose() * l;
+    wa.moment -= j.ja.row(r).template tail<3>().transpose() * l;
+    if (j.joint_b[r] >= 0) {
+      Wrench<double>& wb = ws.wrench(j.joint_b[r]);
+      wb.force -= j.jb.row(r).template head<3>().transpose() * l;
+      wb.moment -= j.jb.row(r).template tail<3>().transpose() * l;
+    }
+  }
+}
+
 /// The constraint forces of a mechanism: after the loads' pass (ws holds every body's kinematics
 /// and applied wrench), solves for lambda (kept in ws.joints().lambda) and adds each joint's
 /// reaction to its bodies' wrenches.
@@ -325,17 +342,7 @@ template <class SceneT> void constraint_forces(const SceneT& scene, SceneWorkspa
   joint_apply(j, j.acc, j.rhs);
   j.rhs -= j.gamma;
   joint_solve(j, j.rhs, j.lambda);
-  for (Eigen::Index r = 0; r < j.lambda.size(); ++r) {
-    const double l = j.lambda(r);
-    Wrench<double>& wa = ws.wrench(j.joint_a[r]);
-    wa.force -= j.ja.row(r).template head<3>().transpose() * l;
-    wa.moment -= j.ja.row(r).template tail<3>().transpose() * l;
-    if (j.joint_b[r] >= 0) {
-      Wrench<double>& wb = ws.wrench(j.joint_b[r]);
-      wb.force -= j.jb.row(r).template head<3>().transpose() * l;
-      wb.moment -= j.jb.row(r).template tail<3>().transpose() * l;
-    }
-  }
+  add_reactions(ws);
 }
 
 }  // namespace tumble::detail

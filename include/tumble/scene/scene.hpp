@@ -105,6 +105,15 @@ concept DifferentiableLoad = requires(const L& l, const Jet<2>& t,
   l.apply(t, ka, kb, wa, wb);
 };
 
+/// A joint the scene can evaluate in Jet scalars (its evaluate() is a template over the scalar
+/// type, as every tumble joint is; a UserJoint over a function of double is not).
+template <class J>
+concept DifferentiableJoint = requires(const J& j, const KinematicsView<Jet<2>>& a,
+                                       const KinematicsView<Jet<2>>& b,
+                                       ConstraintRows<Jet<2>, J::size>& rows) {
+  j.evaluate(a, b, rows);
+};
+
 /// One body of a scene, as the model keeps it, for a state of form Form.
 template <class Body, StateForm Form> struct SceneEntry {
   static constexpr StateForm form = Form;
@@ -182,11 +191,13 @@ class Scene<Bodies<B...>, Loads<L...>, Form, Joints<J...>> {
   /// The index of a body type in Bodies<B...> (its group).
   template <class Body> static constexpr std::size_t group_of = detail::index_of<Body, B...>();
 
-  /// True when every load type can be evaluated in Jet scalars: then the exact Jacobian
-  /// (jacobian.hpp) is available.
-  /// A scene with joints is not differentiated yet (its Jacobian is CVODE's difference quotients).
+  /// True when every load type (and every joint type) can be evaluated in Jet scalars: then the
+  /// exact Jacobian (jacobian.hpp) is available. A mechanism is differentiated in the
+  /// quasi-velocity form; in [q; qdot] its Jacobian is CVODE's difference quotients.
   static constexpr bool differentiable =
-      (detail::DifferentiableLoad<L> && ...) && sizeof...(J) == 0;
+      (detail::DifferentiableLoad<L> && ...) &&
+      (sizeof...(J) == 0 ||
+       (Form == StateForm::quasi_velocities && (detail::DifferentiableJoint<J> && ...)));
   /// True when the scene may hold joints (a mechanism: scene/joints.hpp).
   static constexpr bool has_joints = sizeof...(J) > 0;
   /// True when some load type acts between two bodies.
@@ -393,7 +404,7 @@ class Scene<Bodies<B...>, Loads<L...>, Form, Joints<J...>> {
     for_each_load([&](const auto& at) { link(at.a, at.b); });
     // A joint's multipliers make each of its bodies' accelerations depend on both: a coupling
     // too. (Through a chain of joints the solve couples every body with every other: a band
-    // Jacobian of a mechanism is the difference quotients' band, not the exact one.)
+    // Jacobian of a mechanism is the difference quotients' band; the exact one is dense.)
     for_each_joint([&](const auto& at) { link(at.a, at.b); });
     return bw;
   }

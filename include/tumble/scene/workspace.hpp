@@ -63,6 +63,10 @@ struct JointScratch {
   std::vector<int> joint_a, joint_b;             ///< per row: its joint's bodies (-1: ground)
   Eigen::VectorXd y;                             ///< a state's copy (CVODE's projection)
   int rank = 0;                                  ///< the rank the last solve found
+  /// The exact Jacobian's scratch (scene/jacobian.hpp), sized at its first use: df/dy at fixed
+  /// multipliers (n x n), then d(J nudot - gamma)/dy and dlambda/dy (m x n), the rates.
+  Eigen::MatrixXd jac_fixed, dlambda;
+  Eigen::VectorXd f, column, solved;
   /// Per row: 1 when the row is frozen as redundant (joints.hpp, freeze_dependent): it carries no
   /// reaction and the solve leaves it out. Empty (the default): every row is solved for, and
   /// the dependent ones are found anew by each factorization.
@@ -81,7 +85,7 @@ template <class SceneT> class SceneWorkspace {
       std::get<SceneT::template group_of<Body>>(kinematics_).emplace_back();
     });
     scene.for_each_entry([&](const auto& e) { views_[e.id] = &kinematics(e); });
-    if constexpr (SceneT::has_couplings) {
+    if constexpr (SceneT::has_couplings || SceneT::has_joints) {
       gain_.assign(scene.body_count(), Matrix<double, 7, 6>::Zero());
     }
     if constexpr (SceneT::has_joints) {
@@ -144,8 +148,8 @@ template <class SceneT> class SceneWorkspace {
   /// The same, untyped (what couplings read).
   [[nodiscard]] const KinematicsView<double>& view(int id) const { return *views_[id]; }
   [[nodiscard]] Wrench<double>& wrench(int id) { return wrench_[id]; }
-  /// B = d rates' / dW of a coupled body: d qddot / dW (nq rows), or d(a_c, alpha) / dW (6 rows)
-  /// in the quasi-velocity form; rows beyond those unused.
+  /// B = d rates' / dW of a coupled body (or one with joints): d qddot / dW (nq rows), or
+  /// d(a_c, alpha) / dW (6 rows) in the quasi-velocity form; rows beyond those unused.
   [[nodiscard]] Matrix<double, 7, 6>& gain(int id) { return gain_[id]; }
 
   /// The constraint solve's scratch (a mechanism; empty otherwise).
