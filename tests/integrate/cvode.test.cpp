@@ -876,6 +876,7 @@ TEST_CASE("exceptions thrown by callbacks are rethrown as IntegrationError with 
     INFO(e.what());
     CHECK(e.flag() == CV_RHSFUNC_FAIL);
     CHECK(e.flag_name() == "CV_RHSFUNC_FAIL");
+    CHECK(e.reason() == tumble::IntegrationFailure::callback);
     CHECK(std::string(e.what()).find("boom in rhs") != std::string::npos);
     REQUIRE(e.cause());
     CHECK_THROWS_AS(std::rethrow_exception(e.cause()), Boom);
@@ -912,6 +913,7 @@ TEST_CASE("exceptions thrown by callbacks are rethrown as IntegrationError with 
     FAIL("no exception");
   } catch (const CvodeError& e) {
     CHECK(e.flag() == CV_LSETUP_FAIL);
+    CHECK(e.reason() == tumble::IntegrationFailure::callback);  // whatever the flag
     CHECK(std::string(e.what()).find("boom in jacobian") != std::string::npos);
     REQUIRE(e.cause());
     CHECK_THROWS_AS(std::rethrow_exception(e.cause()), Boom);

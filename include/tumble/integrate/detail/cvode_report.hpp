@@ -86,7 +86,10 @@ inline CvodeError cvode_failure(int flag, double t, const CvodeOptions& o, const
   if (e.has_message) {
     what += " [" + std::string(e.message.data()) + "]";
   }
-  return CvodeError(what, flag, name, flag_reason(flag), t, r.exception);
+  // An exception a callback threw stopped it, whatever flag CVODE returned for it (a Jacobian's
+  // is CV_LSETUP_FAIL): reason() callback, as in the explicit integrator.
+  const IntegrationFailure reason = r.exception ? IntegrationFailure::callback : flag_reason(flag);
+  return CvodeError(what, flag, name, reason, t, r.exception);
 }
 
 /// The CvodeError (CV_TOO_MUCH_WORK) for an integration without a per-call step limit
@@ -101,8 +104,11 @@ inline CvodeError stalled_failure(double before, double t, double h, long steps,
       "changes too fast for the precision of t (shift the time origin), or the system has a "
       "singularity here";
   what += callback_note(r);
+  // CVODE may retry after an exception of rhs() and cut the step to the rounding level of t
+  // (seen with Adams' fixed-point iteration, SUNDIALS 6.4): the exception is the reason.
   return CvodeError(what, CV_TOO_MUCH_WORK, flag_name(CV_TOO_MUCH_WORK),
-                    IntegrationFailure::step_size, t, r.exception);
+                    r.exception ? IntegrationFailure::callback : IntegrationFailure::step_size, t,
+                    r.exception);
 }
 
 /// Adds CVODE's counters of the current segment (since the last (re)initialization) to s. The
