@@ -16,6 +16,7 @@
 #include <cvode/cvode_proj.h>
 
 #include "tumble/core/format.hpp"
+#include "tumble/integrate/detail/callback_error.hpp"
 #include "tumble/integrate/detail/cvode_flags.hpp"
 #include "tumble/integrate/detail/sundials.hpp"
 #include "tumble/integrate/errors.hpp"
@@ -48,22 +49,10 @@ struct CallbackReport {
   }
 };
 
-inline std::string exception_message(const std::exception_ptr& e) {
-  try {
-    std::rethrow_exception(e);
-  } catch (const std::exception& x) {
-    return x.what();
-  } catch (...) {
-    return "an exception not derived from std::exception";
-  }
-}
-
 /// "; <what a callback reported>", or "" when it reported nothing.
 inline std::string callback_note(const CallbackReport& r) {
   if (r.exception) {
-    return "; " + std::string(r.exception_where) +
-           " threw at t = " + format_double(r.exception_time) + ": " +
-           exception_message(r.exception);
+    return "; " + callback_threw(r.exception_where, r.exception_time, r.exception);
   }
   if (r.has_recoverable) {
     return "; last recoverable failure: " + std::string(r.recoverable_where) +
