@@ -23,6 +23,7 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "handles.hpp"
+#include "load_error.hpp"
 #include "scene_api.hpp"
 
 namespace tumble::python {
@@ -48,10 +49,12 @@ Wrench<double> PythonLoad::call(double t, const KinematicsView<double>& k) const
     }
     return Wrench<double>{vector3(r[0], "user load force"), vector3(r[1], "user load moment")};
   } catch (const nb::python_error& e) {
-    // Carried through C++ as "tumble: the user load raised TypeName: message" (no traceback).
+    // Carried through C++ as "tumble: the user load raised TypeName: message" (no traceback),
+    // with the exception object for the IntegrationError's __cause__ (load_error.hpp).
     const std::string type = nb::cast<std::string>(nb::handle(e.type()).attr("__name__"));
-    throw std::runtime_error("tumble: the user load raised " + type + ": " +
-                             nb::cast<std::string>(nb::str(e.value())));
+    throw PythonLoadError(
+        "tumble: the user load raised " + type + ": " + nb::cast<std::string>(nb::str(e.value())),
+        e.value());
   }
 }
 
