@@ -25,10 +25,11 @@ state, recorded without a step), the same runs and threads.
 
 Clocks: 1, 2 and 4 on the calling thread's CPU time (time.thread_time; tumble_micro's and
 tumble_bench's --clock cpu), which leaves out the waits for a core on a shared machine; 3 on the
-wall clock (several threads), with the process's CPU time per run beside it. Every time is the
-median of --reps repetitions (3: of --ensemble-reps, each a run of tumble_bench's ensemble study
-and one Python ensemble, alternating). Errors: the largest attitude error over the outputs
-against the exact solution (tumbling.py).
+wall clock (several threads), with the process's CPU time per run beside it. Every time is a
+median over --reps rounds (3: over --ensemble-reps), each round a run of the C++ program and the
+same work from Python, one after the other, so that the load of a shared machine, which moves
+even CPU times (a busy sibling hardware thread, the caches), weighs on both sides alike.
+Errors: the largest attitude error over the outputs against the exact solution (tumbling.py).
 
 Run: python python/benchmarks/bench.py --cxx-build build [--reps 7] [--ensemble-reps 3]
      [--tol 1e-10] [--out DIR] [--skip 3,4]
@@ -111,26 +112,25 @@ def tumbling_scene(parameterization="EulerParameters", held=True):
 
 # ---- target 1: one call ------------------------------------------------------------------------
 
-def cxx_per_call(build, reps):
-    """tumble_micro's qddot/EulerParameters/centroid: CPU ns per call, median of reps."""
+def cxx_per_call(build):
+    """tumble_micro's qddot/EulerParameters/centroid: CPU s per call (one Google Benchmark run)."""
     out = run([program(build, "tumble_micro"),
-               "--benchmark_filter=^qddot/EulerParameters/centroid$",
-               f"--benchmark_repetitions={reps}", "--benchmark_format=json"])
+               "--benchmark_filter=^qddot/EulerParameters/centroid$", "--benchmark_format=json"])
     rows = [b for b in json.loads(out.stdout)["benchmarks"] if b.get("run_type") == "iteration"]
     scale = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[rows[0]["time_unit"]]
-    return median([b["cpu_time"] for b in rows]) * scale
+    return rows[0]["cpu_time"] * scale
 
 
-def py_per_call(reps, calls=100_000):
-    """CPU seconds per call from Python (the loop's own cost included), median of reps, for
-    accelerations and, to tell the costs apart, calls with other inputs and outputs."""
+def py_per_call_cases():
+    """accelerations of the EP body at its centroid and, to tell the costs apart, calls with
+    other inputs and outputs."""
     body = euler_parameters_body()
     q = np.array([0.0, 0.0, 0.0, 0.9, 0.1, -0.3, math.sqrt(1 - 0.91)])  # r (3), p (4)
     qdot = np.array([0.1, -0.2, 0.3, 0.05, -0.4, 0.2, 0.1])
     force, moment = np.array([0.1, 0.2, 0.3]), np.array([-0.1, 0.05, 0.2])
     ql, qdl = q.tolist(), qdot.tolist()
     accelerations, energy = body.accelerations, body.kinetic_energy
-    cases = {
+    return {
         "accelerations(q, qdot)": lambda: accelerations(q, qdot),
         "accelerations(q, qdot, force=, moment=)":
             lambda: accelerations(q, qdot, force=force, moment=moment),
@@ -138,13 +138,26 @@ def py_per_call(reps, calls=100_000):
         "kinetic_energy(q, qdot) (a float back)": lambda: energy(q, qdot),
         "an empty Python call (the loop's floor)": lambda: None,
     }
-    result = {}
-    for name, fn in cases.items():
-        def loop(fn=fn):
-            for _ in range(calls):
-                fn()
-        result[name] = cpu_seconds(loop, reps) / calls
-    return result
+
+
+def py_per_call(fn, calls=100_000):
+    """CPU seconds per call of fn from a Python loop (the loop's own cost included)."""
+    def loop():
+        for _ in range(calls):
+            fn()
+    return cpu_seconds(loop, 1) / calls
+
+
+def target1(build, rounds):
+    """rounds alternating runs of tumble_micro and of the Python loops (a shared machine's load
+    then weighs on both alike): the medians over the rounds."""
+    cases = py_per_call_cases()
+    cxx, py = [], {name: [] for name in cases}
+    for _ in range(rounds):
+        cxx.append(cxx_per_call(build))
+        for name, fn in cases.items():
+            py[name].append(py_per_call(fn))
+    return median(cxx), {name: median(xs) for name, xs in py.items()}
 
 
 # ---- target 2: one integration -----------------------------------------------------------------
@@ -167,21 +180,32 @@ def cxx_integration(build, tol, reps, out):
             "steps": int(r["steps"]), "rhs": int(r["rhs_evals"])}
 
 
-def py_integration(tol, reps, method="fehlberg78", exact=None):
-    """Scene.integrate on the tumbling body: CPU s (median of reps), error, steps."""
+def py_integration(tol, reps, exact):
+    """Scene.integrate(method="fehlberg78") on the tumbling body: CPU s (median of reps), error,
+    steps."""
     scene, body = tumbling_scene()
     times = tumbling.TIMES
 
     def once():
-        return scene.integrate(times, method=method, rtol=tol, atol=tol)
+        return scene.integrate(times, method="fehlberg78", rtol=tol, atol=tol)
 
     seconds = cpu_seconds(once, reps)
     trajectory = once()
-    exact = tumbling.TorqueFreeBody().rotation(times) if exact is None else exact
     rotations = tumbling.quaternion_to_matrix(trajectory.quaternion[:, body])
     return {"seconds": seconds, "error": tumbling.max_attitude_error(exact, rotations),
-            "steps": trajectory.statistics.steps, "rhs": trajectory.statistics.rhs_evals,
-            "method": trajectory.statistics.method}
+            "steps": trajectory.statistics.steps, "rhs": trajectory.statistics.rhs_evals}
+
+
+def target2(build, tol, rounds, out, exact, reps=5):
+    """rounds alternating runs of tumble_bench (the median of reps) and of Python (the same): the
+    medians over the rounds of both."""
+    cxx, py = [], []
+    for _ in range(rounds):
+        cxx.append(cxx_integration(build, tol, reps, out))
+        py.append(py_integration(tol, reps, exact))
+    for runs in (cxx, py):
+        runs[0]["seconds"] = median([r["seconds"] for r in runs])
+    return cxx[0], py[0]
 
 
 # ---- target 3: the ensemble --------------------------------------------------------------------
@@ -347,11 +371,11 @@ def main(argv=None):
 
     if 1 not in skip:
         print("target 1: one call ...", file=sys.stderr)
-        cxx = cxx_per_call(args.cxx_build, args.reps)
-        py = py_per_call(args.reps)
+        cxx, py = target1(args.cxx_build, args.reps)
         acc = py["accelerations(q, qdot)"]
-        print("\n(1) one call from Python, CPU time per call (median of "
-              f"{args.reps}); C++ tumble_micro qddot/EulerParameters/centroid: {fmt_time(cxx)}")
+        print(f"\n(1) one call from Python, CPU time per call (median of {args.reps} rounds, "
+              "each a run of tumble_micro and loops of 1e5 calls); C++ tumble_micro "
+              f"qddot/EulerParameters/centroid: {fmt_time(cxx)}")
         for name, s in py.items():
             over = "" if name.startswith("an empty") else f"{fmt_time(s - cxx):>10s} over C++"
             print(f"  {name:44s} {fmt_time(s):>10s}   {over}")
@@ -360,11 +384,11 @@ def main(argv=None):
 
     if 2 not in skip:
         print("target 2: the tumbling integration ...", file=sys.stderr)
-        cxx = cxx_integration(args.cxx_build, args.tol, args.reps, out)
-        py = py_integration(args.tol, args.reps, exact=exact)
+        cxx, py = target2(args.cxx_build, args.tol, args.reps, out, exact)
         ratio = py["seconds"] / cxx["seconds"]
         print(f"\n(2) the tumbling body, Fehlberg 7(8), rtol = atol = {args.tol:g}, 50 s, CPU time "
-              f"(median of {args.reps})")
+              f"(median of {args.reps} rounds, each the median of 5 runs of tumble_bench and of "
+              "5 from Python)")
         for name, r in (("Python Scene.integrate(method='fehlberg78')", py),
                         ("C++ tumble_bench 'Odeint F78 EP quasi'", cxx)):
             print(f"  {name:44s} {fmt_time(r['seconds']):>10s}  error {r['error']:.2e} rad, "
