@@ -37,6 +37,25 @@ def test_torque_free_body_keeps_energy_and_momentum(name):
     assert run.statistics.choices and run.statistics.method
 
 
+def test_trajectory_state_is_its_rows():
+    # state(k) is assembled from y and bases when asked: the same state, through chart switches,
+    # two bodies, negative k, and out of range.
+    scene = tumble.Scene()
+    mp = tumble.MassProperties.about_centroid(1.0, DIAG)
+    a = scene.add(tumble.RigidBody("EulerZYX", mp), omega=[0.1, 2.0, 0.05])
+    b = scene.add(tumble.RigidBody("EulerZYX", mp), position=[1.0, 0.0, 0.0], omega=[0.3, 0.1, 2.0])
+    run = scene.integrate(TIMES, method="fehlberg78")
+    assert run.statistics.chart_switches > 0 and len(run) == len(TIMES)
+    for k in (*range(len(run)), -1, -len(run)):
+        s = run.state(k)
+        assert np.array_equal(s.y, run.y[k])
+        for body in (a, b):
+            assert np.array_equal(s.bases[body], run.bases[k, body])
+            assert np.allclose(scene.omega(body, s), run.omega[k, body], rtol=0, atol=1e-14)
+    with pytest.raises(ValueError, match="output"):
+        run.state(len(run))
+
+
 @pytest.mark.parametrize("method", ["auto", "fehlberg78", "dopri5", "cash_karp54", "bdf", "adams"])
 def test_every_method_agrees(method):
     scene, _ = tumbling_scene()
