@@ -153,14 +153,15 @@ void bind_body(nb::module_& m) {
           "centrifugal_coriolis",
           [](const BodyHandle& b, nb::handle q, nb::handle qdot) {
             const int n = b.body->nq();
-            return b.body->centrifugal_coriolis(vector(q, n, "q"), vector(qdot, n, "qdot"));
+            return to_numpy(
+                b.body->centrifugal_coriolis(vector(q, n, "q"), vector(qdot, n, "qdot")));
           },
           "q"_a, "qdot"_a, "f_v(q, qdot), nq (Eqs. 1.26-1.27).")
       .def(
           "generalized_force",
           [](const BodyHandle& b, nb::handle q, nb::handle force, nb::handle moment) {
-            return b.body->generalized_force(vector(q, b.body->nq(), "q"), vector3(force, "force"),
-                                             vector3(moment, "moment"));
+            return to_numpy(b.body->generalized_force(
+                vector(q, b.body->nq(), "q"), vector3(force, "force"), vector3(moment, "moment")));
           },
           "q"_a, "force"_a = nb::make_tuple(0.0, 0.0, 0.0),
           "moment"_a = nb::make_tuple(0.0, 0.0, 0.0),
@@ -176,13 +177,13 @@ void bind_body(nb::module_& m) {
                 throw std::invalid_argument(
                     "tumble.RigidBody.accelerations: give either Q or force/moment, not both");
               }
-              return b.body->accelerations_q(qv, qdv, vector(gen_force, n, "Q"));
+              return to_numpy(b.body->accelerations_q(qv, qdv, vector(gen_force, n, "Q")));
             }
             const Eigen::Vector3d f =
                 force.is_none() ? Eigen::Vector3d::Zero() : vector3(force, "force");
             const Eigen::Vector3d mo =
                 moment.is_none() ? Eigen::Vector3d::Zero() : vector3(moment, "moment");
-            return b.body->accelerations(qv, qdv, f, mo);
+            return to_numpy(b.body->accelerations(qv, qdv, f, mo));
           },
           "q"_a, "qdot"_a, "force"_a = nb::none(), "moment"_a = nb::none(), "Q"_a = nb::none(),
           "qddot from M qddot = f_v + Q (Eq. 1.32), for a wrench (force inertial at c, N; moment "
@@ -199,21 +200,21 @@ void bind_body(nb::module_& m) {
           "linear_momentum",
           [](const BodyHandle& b, nb::handle q, nb::handle qdot) {
             const int n = b.body->nq();
-            return b.body->linear_momentum(vector(q, n, "q"), vector(qdot, n, "qdot"));
+            return to_numpy(b.body->linear_momentum(vector(q, n, "q"), vector(qdot, n, "qdot")));
           },
           "q"_a, "qdot"_a, "m v_g, inertial, kg m/s.")
       .def(
           "angular_momentum",
           [](const BodyHandle& b, nb::handle q, nb::handle qdot) {
             const int n = b.body->nq();
-            return b.body->angular_momentum(vector(q, n, "q"), vector(qdot, n, "qdot"));
+            return to_numpy(b.body->angular_momentum(vector(q, n, "q"), vector(qdot, n, "qdot")));
           },
           "q"_a, "qdot"_a, "The angular momentum about the inertial origin, inertial, kg m^2/s.")
       .def(
           "omega",
           [](const BodyHandle& b, nb::handle q, nb::handle qdot) {
             const int n = b.body->nq();
-            return b.body->omega(vector(q, n, "q"), vector(qdot, n, "qdot"));
+            return to_numpy(b.body->omega(vector(q, n, "q"), vector(qdot, n, "qdot")));
           },
           "q"_a, "qdot"_a, "omega = G thetadot, rad/s, body components (Eq. 1.5).")
       .def("__repr__", [](const BodyHandle& b) {

@@ -5,10 +5,13 @@
 
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include <Eigen/Core>
+#include <nanobind/eigen/dense.h>
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 
@@ -89,4 +92,63 @@ inline Eigen::MatrixXd matrix(nb::handle h, Eigen::Index rows, Eigen::Index cols
 
 inline Eigen::Matrix3d matrix3(nb::handle h, const char* what) { return matrix(h, 3, 3, what); }
 
+/// A new NumPy float64 array of shape (n,) holding data[0, n): numpy.empty(n), filled through the
+/// buffer protocol. Null, with the Python error set, if NumPy fails. Used for the small vectors of
+/// RigidBody's methods: nanobind's own return of an Eigen vector wraps a heap copy in a capsule
+/// and exports it with numpy.asarray, which took 1.2 us of the 1.5 us of a call of
+/// RigidBody.accelerations; this takes about 0.2 us (docs/benchmarks/python.md).
+inline PyObject* new_numpy_vector(const double* data, Py_ssize_t n) noexcept {
+  static PyObject* empty = nullptr;  // numpy.empty, kept for the life of the process
+  if (empty == nullptr) {            // the GIL is held: no race
+    PyObject* numpy = PyImport_ImportModule("numpy");
+    if (numpy == nullptr) {
+      return nullptr;
+    }
+    empty = PyObject_GetAttrString(numpy, "empty");
+    Py_DECREF(numpy);
+    if (empty == nullptr) {
+      return nullptr;
+    }
+  }
+  PyObject* size = PyLong_FromSsize_t(n);
+  if (size == nullptr) {
+    return nullptr;
+  }
+  PyObject* array = PyObject_CallOneArg(empty, size);  // dtype float64, C order
+  Py_DECREF(size);
+  if (array == nullptr) {
+    return nullptr;
+  }
+  Py_buffer view;
+  if (PyObject_GetBuffer(array, &view, PyBUF_WRITABLE | PyBUF_C_CONTIGUOUS) != 0) {
+    Py_DECREF(array);
+    return nullptr;
+  }
+  std::memcpy(view.buf, data, sizeof(double) * static_cast<std::size_t>(n));
+  PyBuffer_Release(&view);
+  return array;
+}
+
+/// An Eigen vector returned to Python as a new NumPy array by new_numpy_vector (the stubs show
+/// the same type as for an Eigen return).
+template <class V> struct NumpyVector { V value; };
+
+template <class V> NumpyVector<V> to_numpy(V v) { return {std::move(v)}; }
+
 }  // namespace tumble::python
+
+namespace nanobind::detail {
+
+template <class V> struct type_caster<tumble::python::NumpyVector<V>> {
+  NB_TYPE_CASTER(tumble::python::NumpyVector<V>, make_caster<V>::Name)
+
+  bool from_python(handle, uint8_t, cleanup_list*) noexcept { return false; }  // outputs only
+
+  static handle from_cpp(const tumble::python::NumpyVector<V>& v, rv_policy,
+                         cleanup_list*) noexcept {
+    return tumble::python::new_numpy_vector(v.value.data(),
+                                            static_cast<Py_ssize_t>(v.value.size()));
+  }
+};
+
+}  // namespace nanobind::detail

@@ -4,13 +4,16 @@
 //    (nanobind's own translation of the standard exceptions);
 //  - tumble::IntegrationError and its subclasses -> tumble.IntegrationError (a RuntimeError),
 //    with the attributes `reason` (IntegrationFailure's name, e.g. 'step_budget') and `time`
-//    (the time reached, s).
+//    (the time reached, s). When a callback stopped the integration (reason 'callback', under
+//    every method), what it threw is the __cause__: the Python exception a Python load raised
+//    (load_error.hpp), or a RuntimeError with the message of a C++ one.
 
 #include "tumble/integrate/errors.hpp"
 
 #include <nanobind/nanobind.h>
 
 #include "bindings.hpp"
+#include "load_error.hpp"
 
 namespace tumble::python {
 
@@ -33,6 +36,23 @@ const char* reason_name(IntegrationFailure r) {
       return "solver";
   }
   return "unknown";
+}
+
+/// The Python exception for the cause of an IntegrationError: the one a Python load raised, or
+/// a RuntimeError with the message of a C++ exception (a new reference; null if that failed).
+PyObject* python_cause(const std::exception_ptr& cause) {
+  try {
+    std::rethrow_exception(cause);
+  } catch (const PythonLoadError& e) {
+    return nanobind::handle(e.exception()).inc_ref().ptr();
+  } catch (const nanobind::python_error& e) {
+    return e.value().inc_ref().ptr();
+  } catch (const std::exception& e) {
+    return PyObject_CallFunction(PyExc_RuntimeError, "s", e.what());
+  } catch (...) {
+    return PyObject_CallFunction(PyExc_RuntimeError, "s",
+                                 "an exception not derived from std::exception");
+  }
 }
 }  // namespace
 
@@ -62,6 +82,13 @@ void bind_errors(nanobind::module_& m) {
           }
           nb::setattr(exc, "reason", nb::str(reason_name(e.reason())));
           nb::setattr(exc, "time", nb::float_(e.time()));
+          if (e.cause()) {
+            PyObject* cause = python_cause(e.cause());
+            if (cause == nullptr) {
+              return;  // the call's own error is set
+            }
+            PyException_SetCause(exc.ptr(), cause);  // steals the reference
+          }
           PyErr_SetObject(exc_type, exc.ptr());
         }
       },

@@ -23,6 +23,7 @@
 #include "bindings.hpp"
 #include "convert.hpp"
 #include "handles.hpp"
+#include "load_error.hpp"
 #include "scene_api.hpp"
 
 namespace tumble::python {
@@ -48,10 +49,12 @@ Wrench<double> PythonLoad::call(double t, const KinematicsView<double>& k) const
     }
     return Wrench<double>{vector3(r[0], "user load force"), vector3(r[1], "user load moment")};
   } catch (const nb::python_error& e) {
-    // Carried through C++ as "tumble: the user load raised TypeName: message" (no traceback).
+    // Carried through C++ as "tumble: the user load raised TypeName: message" (no traceback),
+    // with the exception object for the IntegrationError's __cause__ (load_error.hpp).
     const std::string type = nb::cast<std::string>(nb::handle(e.type()).attr("__name__"));
-    throw std::runtime_error("tumble: the user load raised " + type + ": " +
-                             nb::cast<std::string>(nb::str(e.value())));
+    throw PythonLoadError(
+        "tumble: the user load raised " + type + ": " + nb::cast<std::string>(nb::str(e.value())),
+        e.value());
   }
 }
 
@@ -79,10 +82,12 @@ PyState state_from(const Eigen::VectorXd& y, const std::vector<Eigen::Matrix3d>&
 
 // --- results ---------------------------------------------------------------------------------
 
+/// tumble.Trajectory: the arrays; a whole state (state(k)) is assembled from y and bases when
+/// asked for, not kept per output time (two heap blocks and copies each: the tumbling body's
+/// integration from Python took 148 us without them, 165 us with, docs/benchmarks/python.md).
 struct PyTrajectory {
   OutArray t, y, bases, position, quaternion, velocity, omega, energy;
   RunStatistics statistics;
-  std::vector<SceneState> states;
 };
 
 struct PyEnsemble {
@@ -230,21 +235,6 @@ PyTrajectory trajectory(const PyScene& scene, RawTrajectory&& raw, std::size_t n
   const std::size_t rows = raw.t.size();
   const std::size_t b = scene.bodies().size();
   PyTrajectory out;
-  out.states.reserve(rows);
-  for (std::size_t k = 0; k < rows; ++k) {
-    SceneState s;
-    s.y = Eigen::Map<const Eigen::VectorXd>(raw.y.data() + k * n, static_cast<Eigen::Index>(n));
-    for (std::size_t i = 0; i < b; ++i) {
-      Eigen::Matrix3d m;
-      for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) {
-          m(r, c) = raw.bases[(k * b + i) * 9 + static_cast<std::size_t>(r * 3 + c)];
-        }
-      }
-      s.base.push_back(m);
-    }
-    out.states.push_back(std::move(s));
-  }
   split_bodies(raw.bodies, rows, b, {rows}, out.position, out.quaternion, out.velocity, out.omega);
   out.t = numpy(std::move(raw.t), {rows});
   out.y = numpy(std::move(raw.y), {rows, n});
@@ -342,15 +332,25 @@ void bind_scene(nb::module_& m) {
       .def(
           "state",
           [](const PyTrajectory& t, long k) {
-            const long n = static_cast<long>(t.states.size());
+            const long n = static_cast<long>(t.t.shape(0));
             if (k < -n || k >= n) {
               throw std::invalid_argument("tumble.Trajectory.state: output " + std::to_string(k) +
                                           " of " + std::to_string(n));
             }
-            return PyState{t.states[static_cast<std::size_t>(k < 0 ? k + n : k)]};
+            const auto row = static_cast<std::size_t>(k < 0 ? k + n : k);
+            const std::size_t size = t.y.shape(1), bodies = t.bases.shape(1);
+            PyState s;
+            s.state.y = Eigen::Map<const Eigen::VectorXd>(t.y.data() + row * size,
+                                                          static_cast<Eigen::Index>(size));
+            using RowMajor3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
+            for (std::size_t i = 0; i < bodies; ++i) {  // bases: row-major, as NumPy prints them
+              s.state.base.emplace_back(
+                  Eigen::Map<const RowMajor3>(t.bases.data() + (row * bodies + i) * 9));
+            }
+            return s;
           },
           "k"_a, "The whole state at output k (negative: from the end).")
-      .def("__len__", [](const PyTrajectory& t) { return t.states.size(); });
+      .def("__len__", [](const PyTrajectory& t) { return t.t.shape(0); });
 
   nb::class_<PyEnsemble>(m, "EnsembleResult",
                          "The results of Scene.ensemble for R runs, T output times, B bodies: t "

@@ -37,6 +37,25 @@ def test_torque_free_body_keeps_energy_and_momentum(name):
     assert run.statistics.choices and run.statistics.method
 
 
+def test_trajectory_state_is_its_rows():
+    # state(k) is assembled from y and bases when asked: the same state, through chart switches,
+    # two bodies, negative k, and out of range.
+    scene = tumble.Scene()
+    mp = tumble.MassProperties.about_centroid(1.0, DIAG)
+    a = scene.add(tumble.RigidBody("EulerZYX", mp), omega=[0.1, 2.0, 0.05])
+    b = scene.add(tumble.RigidBody("EulerZYX", mp), position=[1.0, 0.0, 0.0], omega=[0.3, 0.1, 2.0])
+    run = scene.integrate(TIMES, method="fehlberg78")
+    assert run.statistics.chart_switches > 0 and len(run) == len(TIMES)
+    for k in (*range(len(run)), -1, -len(run)):
+        s = run.state(k)
+        assert np.array_equal(s.y, run.y[k])
+        for body in (a, b):
+            assert np.array_equal(s.bases[body], run.bases[k, body])
+            assert np.allclose(scene.omega(body, s), run.omega[k, body], rtol=0, atol=1e-14)
+    with pytest.raises(ValueError, match="output"):
+        run.state(len(run))
+
+
 @pytest.mark.parametrize("method", ["auto", "fehlberg78", "dopri5", "cash_karp54", "bdf", "adams"])
 def test_every_method_agrees(method):
     scene, _ = tumbling_scene()
@@ -104,11 +123,27 @@ def test_loads_spring_between_and_user_load():
     assert np.array_equal(results[0], results[1])
 
 
-def test_user_load_errors_carry_the_python_message():
+@pytest.mark.parametrize("method", ["auto", "fehlberg78", "dopri5", "bdf", "adams"])
+@pytest.mark.parametrize("after", [-1.0, 0.25])  # raises from the start, or from t > 0.25
+def test_user_load_errors_are_integration_errors_caused_by_the_python_exception(method, after):
+    def load(t, r, R, v, w):
+        if t > after:
+            return 1 / 0
+        return (0, 0, 0), (0, 0, 0)
+
     scene, body = tumbling_scene()
-    scene.add_user_load(body, lambda t, r, R, v, w: 1 / 0)
-    with pytest.raises(Exception, match="ZeroDivisionError: division by zero"):
-        scene.integrate([1.0], method="fehlberg78")
+    scene.add_user_load(body, load)
+    with pytest.raises(tumble.IntegrationError,
+                       match="ZeroDivisionError: division by zero") as caught:
+        scene.integrate([0.5, 1.0], method=method)
+    e = caught.value
+    assert e.reason == "callback"
+    assert 0.0 <= e.time <= max(after, 0.0)
+    assert "rhs() threw at t = " in str(e)
+    # The Python exception the load raised, itself, as `raise ... from` would chain it.
+    assert isinstance(e.__cause__, ZeroDivisionError)
+    assert str(e.__cause__) == "division by zero"
+    assert e.__cause__.__traceback__ is not None
 
 
 def test_integration_error():

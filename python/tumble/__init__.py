@@ -10,7 +10,7 @@ NumPy arrays in and out; SI units and rad throughout.
   ``add_spring``, ``add_spring_between``, ``add_user_load``; ``integrate`` (the front door,
   ``tumble::integrate``) and ``ensemble`` (oneTBB, the GIL released);
 - errors: ``ValueError`` for bad input, ``tumble.IntegrationError`` when an integration cannot
-  go on.
+  go on (a Python load that raised: ``reason`` ``'callback'``, its exception the ``__cause__``).
 """
 
 from ._tumble import *  # noqa: F401,F403

@@ -876,6 +876,7 @@ TEST_CASE("exceptions thrown by callbacks are rethrown as IntegrationError with 
     INFO(e.what());
     CHECK(e.flag() == CV_RHSFUNC_FAIL);
     CHECK(e.flag_name() == "CV_RHSFUNC_FAIL");
+    CHECK(e.reason() == tumble::IntegrationFailure::callback);
     CHECK(std::string(e.what()).find("boom in rhs") != std::string::npos);
     REQUIRE(e.cause());
     CHECK_THROWS_AS(std::rethrow_exception(e.cause()), Boom);
@@ -883,10 +884,11 @@ TEST_CASE("exceptions thrown by callbacks are rethrown as IntegrationError with 
   }
 
   struct ThrowingRoots : SineEvents {
-    void roots(double t, ConstVectorMap, VectorMap) const {
+    void roots(double t, ConstVectorMap, VectorMap g) const {
       if (t > 1.0) {
         throw Boom("boom in roots");
       }
+      g.setOnes();  // no root before; left unwritten, CVODE would read what its memory held
     }
   };
   Cvode roots(ThrowingRoots{}, 0.0, Eigen::Vector2d(0.0, 1.0));
@@ -896,6 +898,7 @@ TEST_CASE("exceptions thrown by callbacks are rethrown as IntegrationError with 
   } catch (const CvodeError& e) {
     CHECK(e.flag() == CV_RTFUNC_FAIL);
     CHECK(std::string(e.what()).find("boom in roots") != std::string::npos);
+    REQUIRE(e.cause());
     CHECK_THROWS_AS(std::rethrow_exception(e.cause()), Boom);
   }
 
@@ -910,7 +913,9 @@ TEST_CASE("exceptions thrown by callbacks are rethrown as IntegrationError with 
     FAIL("no exception");
   } catch (const CvodeError& e) {
     CHECK(e.flag() == CV_LSETUP_FAIL);
+    CHECK(e.reason() == tumble::IntegrationFailure::callback);  // whatever the flag
     CHECK(std::string(e.what()).find("boom in jacobian") != std::string::npos);
+    REQUIRE(e.cause());
     CHECK_THROWS_AS(std::rethrow_exception(e.cause()), Boom);
   }
 

@@ -403,7 +403,9 @@ template <class SceneT, int N = Eigen::Dynamic> class AutoIntegrator {
   }
 
   /// Point 1: h rho at (t, s) against kStiffAtStart; false (and h_rho = 0) when the scene cannot
-  /// be evaluated there (the integrator then reports it) or the window test is off.
+  /// be evaluated there, a non-finite value or a load's own exception (the explicit integrator
+  /// then reports it, as in a step: an IntegrationError of reason callback), or when the window
+  /// test is off.
   bool stiff_at(double t, const SceneState& s, double& h_rho) {
     h_rho = 0.0;
     if (options_.stiffness_window == 0) {
@@ -422,17 +424,21 @@ template <class SceneT, int N = Eigen::Dynamic> class AutoIntegrator {
         return false;
       }
     };
-    if (!f(s.y, f0)) {
+    try {
+      if (!f(s.y, f0)) {
+        return false;
+      }
+      const double rho = detail::spectral_radius(f, s.y, f0, v, y1, f1);
+      const double h = std::visit(
+          [&](const auto& atol) {
+            return detail::initial_step(f, s.y, f0, y1, f1, atol, options_.rtol, 8.0,
+                                        options_.max_step);
+          },
+          options_.atol);
+      h_rho = h * rho;
+    } catch (...) {  // a load's own exception: see above
       return false;
     }
-    const double rho = detail::spectral_radius(f, s.y, f0, v, y1, f1);
-    const double h = std::visit(
-        [&](const auto& atol) {
-          return detail::initial_step(f, s.y, f0, y1, f1, atol, options_.rtol, 8.0,
-                                      options_.max_step);
-        },
-        options_.atol);
-    h_rho = h * rho;
     return h_rho > kStiffAtStart;
   }
 

@@ -16,7 +16,11 @@
 //      ExplicitIntegrationError  the explicit integrator stopped
 //      StiffSceneError           ... because the scene looks stiff (it names the remedy, BDF)
 //    Bad input (options, states, output times) is std::invalid_argument before anything is
-//    integrated, in both.
+//    integrated, in both. An exception thrown by a callback the integrator calls inside a step
+//    (a scene's load or force: "rhs()", an event function: "roots()") stops both alike:
+//    reason() callback, cause() that exception, what() "<where> threw at t = <t>: <its what()>"
+//    (detail/callback_error.hpp). The user's observer and an event's action run between steps:
+//    their exceptions arrive unchanged, in both.
 
 #include <exception>
 #include <stdexcept>

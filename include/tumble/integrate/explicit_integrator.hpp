@@ -16,7 +16,8 @@
 // (or, with Dormand-Prince, read off its dense output), and a stiffness test every
 // stiffness_window attempts and when a budget is spent (integrate/detail/explicit_diagnostics.hpp).
 // Never a run that does not end, never a NaN state: non-finite trial states are rejected, and a
-// step size at the rounding level of t throws.
+// step size at the rounding level of t throws. An exception of a load, force or event function
+// stops it as CVODE's does (detail/callback_error.hpp): reason() callback, the original as cause().
 
 #include <algorithm>
 #include <cmath>
@@ -33,6 +34,7 @@
 #include "tumble/core/cache_line.hpp"
 #include "tumble/core/errors.hpp"
 #include "tumble/core/format.hpp"
+#include "tumble/integrate/detail/callback_error.hpp"
 #include "tumble/integrate/detail/explicit_diagnostics.hpp"
 #include "tumble/integrate/detail/explicit_numerics.hpp"
 #include "tumble/integrate/detail/odeint_stepper.hpp"
@@ -152,7 +154,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
 
   /// Restarts from the state s at time t (charts in their switch zone are re-centered first).
   void reset(double t, const SceneState& s) {
-    check_state(s, t);
+    detail::check_scene_state_at(*scene_, s, t, kWho);
     const ChartBases old = base_;
     const State x_old = x_;
     const std::vector<char> rows_old = ws_.joints().dependent;  // the frozen redundant rows
@@ -164,15 +166,21 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       }
       bool recentered = false;
       after_change(recentered);
-      evaluate(x_, dxdt_, t);  // throws NonFiniteError at a state the scene cannot evaluate
+      // NonFiniteError: a state the scene cannot evaluate; a load's own exception: as in a step.
+      detail::guard_callbacks(kWho, "rhs()", t, t, [&] { evaluate(x_, dxdt_, t); });
       deriv_valid_ = true;
-    } catch (const NonFiniteError& e) {
+    } catch (...) {  // back to the state before; NonFiniteError is bad input here
       base_ = old;
       x_ = x_old;
       ws_.joints().dependent = rows_old;
-      throw std::invalid_argument(std::string("tumble::OdeintIntegrator::reset: the scene cannot "
-                                              "be evaluated at this state: ") +
-                                  e.what());
+      deriv_valid_ = false;  // dxdt_ may be half written
+      try {
+        throw;
+      } catch (const NonFiniteError& e) {
+        throw std::invalid_argument(std::string("tumble::OdeintIntegrator::reset: the scene cannot "
+                                                "be evaluated at this state: ") +
+                                    e.what());
+      }
     }
     t_ = t;
     window_ = detail::StepRun{.t_start = t};
@@ -267,24 +275,12 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   std::span<const Matrix3<double>> bases() const { return base_; }
 
   static std::string num(double v) { return detail::format_double(v); }
-
-  void check_state(const SceneState& s, double t) const {
-    const std::string who = "tumble::OdeintIntegrator";
-    if (!std::isfinite(t)) {
-      throw std::invalid_argument(who + ": the time " + num(t) + " is not finite");
-    }
-    detail::check_scene_state(*scene_, s, who);
-    for (Eigen::Index i = 0; i < s.y.size(); ++i) {
-      if (!std::isfinite(s.y[i])) {
-        throw std::invalid_argument(who + ": the state is not finite: y[" + std::to_string(i) +
-                                    "] = " + num(s.y[i]));
-      }
-    }
-  }
+  static constexpr const char* kWho = "tumble::OdeintIntegrator";
 
   /// x' at x; throws NonFiniteError when it is not finite.
   void evaluate(const State& x, State& dxdt, double t) {
     ++stats_.rhs_evals;
+    t_eval_ = t;
     tumble::rhs(*scene_, ws_, t, map(x), bases(), map(dxdt));
   }
 
@@ -298,6 +294,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   /// read back while the stores are in flight); checking each input, 4 %.
   template <bool CheckInput> [[gnu::flatten]] void stage(const State& x, State& dxdt, double t) {
     ++stats_.rhs_evals;
+    t_eval_ = t;  // for the message, should a load throw
     if constexpr (CheckInput) {
       if (!finite(x)) [[unlikely]] {
         stage_not_finite_ = true;
@@ -352,15 +349,14 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     return chart_step_fraction(*scene_, map(x_), map(x), deep_, g0_, g_);
   }
 
-  void events_at(double t, const State& x, CacheLineVector<double>& g) const {
+  void events_at(double t, const State& x, CacheLineVector<double>& g) {
     const auto& events = scene_->events();
-    if (events.empty()) {
-      return;
-    }
     const SceneStateView view(x.data(), size(), bases());
-    for (std::size_t i = 0; i < events.size(); ++i) {
-      g[i] = events[i].function(t, view);
-    }
+    detail::guard_callbacks(kWho, "roots()", t, t_, [&] {
+      for (std::size_t i = 0; i < events.size(); ++i) {
+        g[i] = events[i].function(t, view);
+      }
+    });
   }
 
   /// The initial step (detail::initial_step) for the stepper's order.
@@ -386,6 +382,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
         return true;
       } catch (const NonFiniteError&) {
         return false;
+      } catch (...) {
+        detail::throw_callback_error(kWho, "rhs()", t_, t_);
       }
     };
   }
@@ -441,6 +439,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
         }
         ok = false;
         h = 0.25 * h_try;
+      } catch (...) {  // a load's or a force's own exception: the step's one handler
+        detail::throw_callback_error(kWho, "rhs()", t_eval_, t_);
       }
       if (!ok) {
         ++stats_.rejected_steps;
@@ -497,14 +497,18 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   bool locate_events(S& stepper, const System<S>& sys, double t_old, double t_new) {
     const auto& events = scene_->events();
     const auto state_at = [&](double t, State& out) {
-      stepper.state_at(sys, t, out, x_old_, dxdt_old_, t_old, x_, dxdt_, t_new);
+      detail::guard_callbacks(kWho, "rhs()", t, t_, [&] {
+        stepper.state_at(sys, t, out, x_old_, dxdt_old_, t_old, x_, dxdt_, t_new);
+      });
     };
     double t_first = t_new;
     const std::size_t first = detail::first_event(
         events, ev_old_, ev_new_, t_old, t_new,
         [&](std::size_t i, double c) {
           state_at(c, x_tmp_);
-          return events[i].function(c, SceneStateView(x_tmp_.data(), size(), bases()));
+          return detail::guard_callbacks(kWho, "roots()", c, t_, [&] {
+            return events[i].function(c, SceneStateView(x_tmp_.data(), size(), bases()));
+          });
         },
         t_first);
     if (first == events.size()) {
@@ -533,19 +537,16 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   /// detail::spectral_radius at the current state (only when a budget is spent, so the scratch
   /// states are free); 0 when the right-hand side cannot be evaluated.
   double spectral_radius() {
-    try {
-      if (!deriv_valid_) {
-        evaluate(x_, dxdt_, t_);
-        deriv_valid_ = true;
-      }
-    } catch (const NonFiniteError&) {
+    const auto f = evaluator();
+    auto f0 = map(dxdt_);
+    if (!deriv_valid_ && !f(map(std::as_const(x_)), f0)) {
       return 0.0;
     }
+    deriv_valid_ = true;
     auto v = map(x_new_);
     auto y1 = map(x_tmp_);
     auto f1 = map(dxdt_new_);
-    return detail::spectral_radius(evaluator(), map(std::as_const(x_)), map(std::as_const(dxdt_)),
-                                   v, y1, f1);
+    return detail::spectral_radius(f, map(std::as_const(x_)), map(std::as_const(dxdt_)), v, y1, f1);
   }
 
   /// The stiffness test of a full window (OdeintOptions::stiffness_window): throws
@@ -583,6 +584,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   detail::StepRun run_;             ///< this advance (or output interval): the step budget
   detail::StepRun window_;          ///< the attempts since the last stiffness test
   double t_ = 0.0, h_ = 0.0;        ///< time, next step size
+  double t_eval_ = 0.0;             ///< the time of the last evaluation of the scene
   State corr_{};                    ///< the projection's correction
   CacheLineVector<double> g_, g0_;  ///< chart roots at a step's end and start
   std::vector<double> deep_;        ///< per chart body: roots below this reject a step

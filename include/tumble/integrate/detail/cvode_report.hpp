@@ -16,6 +16,7 @@
 #include <cvode/cvode_proj.h>
 
 #include "tumble/core/format.hpp"
+#include "tumble/integrate/detail/callback_error.hpp"
 #include "tumble/integrate/detail/cvode_flags.hpp"
 #include "tumble/integrate/detail/sundials.hpp"
 #include "tumble/integrate/errors.hpp"
@@ -48,22 +49,10 @@ struct CallbackReport {
   }
 };
 
-inline std::string exception_message(const std::exception_ptr& e) {
-  try {
-    std::rethrow_exception(e);
-  } catch (const std::exception& x) {
-    return x.what();
-  } catch (...) {
-    return "an exception not derived from std::exception";
-  }
-}
-
 /// "; <what a callback reported>", or "" when it reported nothing.
 inline std::string callback_note(const CallbackReport& r) {
   if (r.exception) {
-    return "; " + std::string(r.exception_where) +
-           " threw at t = " + format_double(r.exception_time) + ": " +
-           exception_message(r.exception);
+    return "; " + callback_threw(r.exception_where, r.exception_time, r.exception);
   }
   if (r.has_recoverable) {
     return "; last recoverable failure: " + std::string(r.recoverable_where) +
@@ -86,7 +75,10 @@ inline CvodeError cvode_failure(int flag, double t, const CvodeOptions& o, const
   if (e.has_message) {
     what += " [" + std::string(e.message.data()) + "]";
   }
-  return CvodeError(what, flag, name, flag_reason(flag), t, r.exception);
+  // An exception a callback threw stopped it, whatever flag CVODE returned for it (a Jacobian's
+  // is CV_LSETUP_FAIL): reason() callback, as in the explicit integrator.
+  const IntegrationFailure reason = r.exception ? IntegrationFailure::callback : flag_reason(flag);
+  return CvodeError(what, flag, name, reason, t, r.exception);
 }
 
 /// The CvodeError (CV_TOO_MUCH_WORK) for an integration without a per-call step limit
@@ -101,8 +93,11 @@ inline CvodeError stalled_failure(double before, double t, double h, long steps,
       "changes too fast for the precision of t (shift the time origin), or the system has a "
       "singularity here";
   what += callback_note(r);
+  // CVODE may retry after an exception of rhs() and cut the step to the rounding level of t
+  // (seen with Adams' fixed-point iteration, SUNDIALS 6.4): the exception is the reason.
   return CvodeError(what, CV_TOO_MUCH_WORK, flag_name(CV_TOO_MUCH_WORK),
-                    IntegrationFailure::step_size, t, r.exception);
+                    r.exception ? IntegrationFailure::callback : IntegrationFailure::step_size, t,
+                    r.exception);
 }
 
 /// Adds CVODE's counters of the current segment (since the last (re)initialization) to s. The

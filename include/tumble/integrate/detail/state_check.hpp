@@ -2,13 +2,16 @@
 // What both integrators check of a SceneState they are given (construction, reset): the sizes
 // match the scene, every chart base is a proper rotation, and a mechanism's state is on its
 // joints' constraints (to kJointStartTolerance; the projection after the first step removes what
-// is left).
+// is left); for the explicit integrator also that the time and the state are finite (CVODE's core
+// checks its own).
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
+#include "tumble/core/format.hpp"
 #include "tumble/core/types.hpp"
 #include "tumble/scene/assembly.hpp"
 #include "tumble/scene/state.hpp"
@@ -52,6 +55,22 @@ void check_scene_state(const SceneT& scene, const SceneState& s, const std::stri
          << " (accepted: " << kJointStartTolerance
          << " relative); put the state on them with tumble::assemble(scene, state)";
       throw std::invalid_argument(os.str());
+    }
+  }
+}
+
+/// check_scene_state, and that the time t and every entry of s.y are finite.
+template <class SceneT>
+void check_scene_state_at(const SceneT& scene, const SceneState& s, double t,
+                          const std::string& who) {
+  if (!std::isfinite(t)) {
+    throw std::invalid_argument(who + ": the time " + format_double(t) + " is not finite");
+  }
+  check_scene_state(scene, s, who);
+  for (Eigen::Index i = 0; i < s.y.size(); ++i) {
+    if (!std::isfinite(s.y[i])) {
+      throw std::invalid_argument(who + ": the state is not finite: y[" + std::to_string(i) +
+                                  "] = " + format_double(s.y[i]));
     }
   }
 }
