@@ -272,6 +272,7 @@ class Scene<Bodies<B...>, Loads<L...>, Form, Joints<J...>> {
     auto& list = std::get<std::vector<Attached<Load>>>(loads_);
     loads_on_[detail::index_of<Load, L...>()][body.id].push_back(static_cast<int>(list.size()));
     list.push_back({std::move(load), body.id, -1});
+    ++load_count_;
   }
 
   /// Attach a load between two bodies.
@@ -286,6 +287,7 @@ class Scene<Bodies<B...>, Loads<L...>, Form, Joints<J...>> {
     entry(b).needs_rotation = true;
     coupled_[a.id] = coupled_[b.id] = 1;
     std::get<std::vector<Attached<Load>>>(loads_).push_back({std::move(load), a.id, b.id});
+    ++load_count_;
   }
 
   /// Join bodies a and b by a joint (its points and axes given in each body's components).
@@ -374,6 +376,8 @@ class Scene<Bodies<B...>, Loads<L...>, Form, Joints<J...>> {
     return d;
   }
 
+  /// The number of loads attached, of every type.
+  [[nodiscard]] int load_count() const { return load_count_; }
   /// The loads of one type, in the order they were attached.
   template <class Load> [[nodiscard]] const std::vector<Attached<Load>>& loads() const {
     return std::get<std::vector<Attached<Load>>>(loads_);
@@ -533,6 +537,7 @@ class Scene<Bodies<B...>, Loads<L...>, Form, Joints<J...>> {
 
   std::tuple<std::vector<Entry<B>>...> groups_;
   std::tuple<std::vector<Attached<L>>...> loads_;
+  int load_count_ = 0;
   std::tuple<std::vector<AttachedJoint<J>>...> joints_;
   int joint_count_ = 0;
   int constraint_count_ = 0;
