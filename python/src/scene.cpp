@@ -76,10 +76,6 @@ struct PyState {
   SceneState state;
 };
 
-PyState state_from(const Eigen::VectorXd& y, const std::vector<Eigen::Matrix3d>& bases) {
-  return PyState{SceneState{y, bases}};
-}
-
 // --- results ---------------------------------------------------------------------------------
 
 /// tumble.Trajectory: the arrays; a whole state (state(k)) is assembled from y and bases when
