@@ -271,6 +271,38 @@ TEST_CASE("IFToMM A03: Andrews' mechanism in [q; qdot] and with CVODE's BDF", "[
   CHECK(b.closure <= 1e-13);
 }
 
+TEST_CASE("IFToMM A03: BDF at atol = 1e-11 stops at its stall, never extrapolating past it",
+          "[joint][iftomm]") {
+  // At 1e-11 CVODE's BDF step size on this mechanism falls to a denormal (8e-320 near
+  // t = 0.0102 s, SUNDIALS 6.4), where CVODE's own test for having passed an output time
+  // underflows and it returned success with states extrapolated from where it was stuck
+  // (cvode_report.hpp, underflow_failure). Either the run reaches 0.03 s, or it stops with a
+  // step-size error; every state it gave is on the explicit run at 1e-12 (itself within 1e-10 of
+  // the second model, above).
+  const andrews::Andrews<> m;
+  SceneIntegratorOptions opt;
+  opt.rtol = 1e-11;
+  opt.atol = 1e-11;
+  SceneIntegrator<andrews::Andrews<>::SceneT> bdf(m.scene, 0.0, opt);
+  OdeintIntegrator<andrews::Andrews<>::SceneT> explicit_run(m.scene, 0.0,
+                                                            {.rtol = 1e-12, .atol = 1e-12});
+  double t = 0.0, worst = 0.0;
+  try {
+    for (int k = 1; k <= 100; ++k) {
+      t = 0.0003 * k;
+      bdf.advance(t);
+      explicit_run.advance(t);
+      worst = std::max(worst, (bdf.state().y - explicit_run.state().y).cwiseAbs().maxCoeff());
+    }
+  } catch (const IntegrationError& e) {
+    INFO(e.what());
+    CHECK(e.reason() == IntegrationFailure::step_size);
+    CHECK(e.time() <= t);
+  }
+  INFO("largest difference of the states given: " << worst);
+  CHECK(worst <= 1e-4);  // positions in m, rates up to 1e3 rad/s: BDF at 1e-11
+}
+
 TEST_CASE("examples/andrews.cpp: the squeezer on the Test Set's reference, energy kept",
           "[joint][example]") {
   CHECK(andrews_main() == 0);

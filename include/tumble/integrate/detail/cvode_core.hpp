@@ -378,6 +378,17 @@ template <class System> class CvodeCore {
       if (flag < 0) {
         throw failure(flag);
       }
+      if (flag == CV_SUCCESS && task == CV_NORMAL) {
+        sun_real tn = tout;
+        (void)CVodeGetCurrentTime(mem_.get(), &tn);
+        if (tn < tout) {  // stepping past tout, CVODE never returns behind it but by underflow
+          sun_real h = 0.0;
+          (void)CVodeGetCurrentStep(mem_.get(), &h);
+          (void)CVodeGetDky(mem_.get(), tn, 0, y_.get());  // the state where it stopped
+          t_ = tn;
+          throw underflow_failure(tout, tn, h, report_);
+        }
+      }
       return flag;
     }
   }

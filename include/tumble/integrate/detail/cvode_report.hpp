@@ -83,6 +83,24 @@ inline CvodeError cvode_failure(int flag, double t, const CvodeOptions& o, const
 
 /// The CvodeError (CV_TOO_MUCH_WORK) for an integration without a per-call step limit
 /// whose last `steps` steps, of size about h, moved t only from `before` to t.
+/// CVODE's step fell below the smallest normal double (a denormal h): its test for having passed
+/// tout, (tn - tout) * h >= 0, then underflows to zero and CVode() returns success with the state
+/// extrapolated from tn to tout (seen with BDF on Andrews' mechanism at atol = 1e-11: h = 8e-320
+/// at tn = 0.010176, "reached" 0.0102, 0.0105, ... with tn unchanged, SUNDIALS 6.4). tumble
+/// refuses that state and reports the stall it is.
+inline CvodeError underflow_failure(double tout, double tn, double h, const CallbackReport& r) {
+  std::string what =
+      "tumble::Cvode: the integration stalled at t = " + format_double(tn) +
+      ": CVODE's step size fell to h = " + format_double(h) +
+      ", far below the rounding level of t, and it returned t = " + format_double(tout) +
+      " by extrapolating from there; the solution changes too fast for the "
+      "tolerances, or the system has a singularity here";
+  what += callback_note(r);
+  return CvodeError(what, CV_TOO_MUCH_WORK, flag_name(CV_TOO_MUCH_WORK),
+                    r.exception ? IntegrationFailure::callback : IntegrationFailure::step_size, tn,
+                    r.exception);
+}
+
 inline CvodeError stalled_failure(double before, double t, double h, long steps,
                                   const CallbackReport& r) {
   std::string what =
