@@ -1,7 +1,8 @@
-// The errors of include/tumble/integrate/errors.hpp, alike for every integrator (issue 17: "the
-// two integrators alike"): one test per case, run for CVODE's SceneIntegrator (BDF and Adams),
-// the explicit OdeintIntegrator (Fehlberg 7(8), and Dormand-Prince, whose integrate() reads the
-// outputs off its dense output) and the front door (AutoIntegrator), each asserting the same:
+// The errors of include/tumble/integrate/errors.hpp, alike for every integrator (the front
+// door's promise that the two integrators speak alike): one test per case, run for CVODE's
+// SceneIntegrator (BDF and Adams), the explicit OdeintIntegrator (Fehlberg 7(8), and
+// Dormand-Prince, whose integrate() reads the outputs off its dense output) and the front door
+// (AutoIntegrator), each asserting the same:
 //  - a user load that throws at t > 0.25: IntegrationError with reason() callback, time() near
 //    0.25 (the time reached), what() "rhs() threw at t = ..." with the load's message, cause()
 //    the load's own exception; in advance() and in integrate();

@@ -252,8 +252,8 @@ void mechanism_jacobian(const SceneT& scene, SceneWorkspace<SceneT>& ws, double 
   // f(y), lambda and the factorization of J B J^T (joints.hpp).
   rhs(scene, ws, t, y, base, js.f);
   // Every body's wrench but its one-body loads (body_block_in adds those in jets): the
-  // couplings' and the reactions at lambda.
-  scene_kinematics(scene, ws, y, base);
+  // couplings' and the reactions at lambda; the kinematics are rhs()'s, at the same y.
+  scene.for_each_entry([&](const auto& e) { ws.wrench(e.id) = Wrench<double>{}; });
   scene.for_each_load([&](const auto& a) {
     if constexpr (CouplingElement<std::remove_cvref_t<decltype(a.load)>>) {
       a.load.apply(t, ws.view(a.a), ws.view(a.b), ws.wrench(a.a), ws.wrench(a.b));

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <utility>
 
 #include <cvode/cvode.h>
 #include <cvode/cvode_ls.h>
@@ -81,8 +82,17 @@ inline CvodeError cvode_failure(int flag, double t, const CvodeOptions& o, const
   return CvodeError(what, flag, name, reason, t, r.exception);
 }
 
-/// The CvodeError (CV_TOO_MUCH_WORK) for an integration without a per-call step limit
-/// whose last `steps` steps, of size about h, moved t only from `before` to t.
+/// The CvodeError of a stalled integration (CV_TOO_MUCH_WORK, reason step_size) at t, with the
+/// callbacks' note; CVODE may retry after an exception of rhs() and cut the step to the rounding
+/// level of t (seen with Adams' fixed-point iteration, SUNDIALS 6.4): the exception is then the
+/// reason.
+inline CvodeError stall_error(std::string what, double t, const CallbackReport& r) {
+  what += callback_note(r);
+  return CvodeError(what, CV_TOO_MUCH_WORK, flag_name(CV_TOO_MUCH_WORK),
+                    r.exception ? IntegrationFailure::callback : IntegrationFailure::step_size, t,
+                    r.exception);
+}
+
 /// CVODE's step fell below the smallest normal double (a denormal h): its test for having passed
 /// tout, (tn - tout) * h >= 0, then underflows to zero and CVode() returns success with the state
 /// extrapolated from tn to tout (seen with BDF on Andrews' mechanism at atol = 1e-11: h = 8e-320
@@ -95,12 +105,11 @@ inline CvodeError underflow_failure(double tout, double tn, double h, const Call
       ", far below the rounding level of t, and it returned t = " + format_double(tout) +
       " by extrapolating from there; the solution changes too fast for the "
       "tolerances, or the system has a singularity here";
-  what += callback_note(r);
-  return CvodeError(what, CV_TOO_MUCH_WORK, flag_name(CV_TOO_MUCH_WORK),
-                    r.exception ? IntegrationFailure::callback : IntegrationFailure::step_size, tn,
-                    r.exception);
+  return stall_error(std::move(what), tn, r);
 }
 
+/// The CvodeError (CV_TOO_MUCH_WORK) for an integration without a per-call step limit
+/// whose last `steps` steps, of size about h, moved t only from `before` to t.
 inline CvodeError stalled_failure(double before, double t, double h, long steps,
                                   const CallbackReport& r) {
   std::string what =
@@ -110,12 +119,7 @@ inline CvodeError stalled_failure(double before, double t, double h, long steps,
       ", at the rounding level of t), so the requested time cannot be reached; the solution "
       "changes too fast for the precision of t (shift the time origin), or the system has a "
       "singularity here";
-  what += callback_note(r);
-  // CVODE may retry after an exception of rhs() and cut the step to the rounding level of t
-  // (seen with Adams' fixed-point iteration, SUNDIALS 6.4): the exception is the reason.
-  return CvodeError(what, CV_TOO_MUCH_WORK, flag_name(CV_TOO_MUCH_WORK),
-                    r.exception ? IntegrationFailure::callback : IntegrationFailure::step_size, t,
-                    r.exception);
+  return stall_error(std::move(what), t, r);
 }
 
 /// Adds CVODE's counters of the current segment (since the last (re)initialization) to s. The
