@@ -24,7 +24,7 @@ using Rod = RigidBody<EulerParameters>;
 using SceneT = Mechanism<Bodies<Rod>, Joints<Revolute>, Loads<UniformGravity>>;
 constexpr double kLength = 1.2, kMass = 2.0, kG = 9.81;
 
-/// The pendulum of mechanism.test.cpp (a rod hinged at its top end about y) released from theta0.
+/// The pendulum of pendulum.test.cpp (a rod hinged at its top end about y) released from theta0.
 SceneT pendulum(double theta0) {
   SceneT scene;
   const Vector3d top(0, 0, 0.5 * kLength);

@@ -4,8 +4,10 @@
 // Richardson (tests/support/finite_difference.hpp), one column per coordinate. Checked on
 // Andrews' mechanism (redundant rows frozen, a spring and a motor; Euler parameters and the
 // rotation vector) at a state of its motion, and on a spatial double pendulum with a spring
-// between its links (a coupling), a spherical and a universal joint, off the constraints. Then
-// CVODE's BDF with it on Andrews' mechanism, against the difference quotients.
+// between its links (a coupling), a spherical and a universal joint, off the constraints. CVODE's
+// BDF with it on Andrews' mechanism, against the difference quotients: andrews_bdf.test.cpp.
+// Compiled in three slices (tests/CMakeLists.txt), one parameterization of Andrews' mechanism each,
+// the double pendulum in slice 2.
 
 #include "tumble/scene/jacobian.hpp"
 
@@ -13,16 +15,18 @@
 #include <cmath>
 #include <limits>
 #include <span>
+#include <tuple>
 #include <vector>
 
 #include <Eigen/Geometry>
 
 #include "support/catch.hpp"
 #include "support/finite_difference.hpp"
+#include "support/parameterizations.hpp"
 #include "tumble/integrate.hpp"
 
-#define main andrews_jacobian_main
-#include "../../examples/andrews.cpp"  // NOLINT(bugprone-suspicious-include)
+#define main TUMBLE_TEST_SLICED_NAME(andrews_jacobian_main)  // unused, one per slice
+#include "../../examples/andrews.cpp"                        // NOLINT(bugprone-suspicious-include)
 #undef main
 
 namespace {
@@ -100,10 +104,20 @@ template <class SceneT> std::vector<char> position_columns(const SceneT& scene) 
   return p;
 }
 
+/// Andrews' mechanism in a constraint chart and in a vector chart (its shadow switches).
+using JacobianParameterizations = std::tuple<EulerParameters, RotationVector>;
+#if defined(TUMBLE_TEST_SLICE) && defined(TUMBLE_TEST_SLICES)
+using TUMBLE_TEST_SLICED_NAME(JacobianSlice) =
+    tumble::test::SliceOf<TUMBLE_TEST_SLICE, TUMBLE_TEST_SLICES, JacobianParameterizations>;
+#else
+using JacobianSlice = JacobianParameterizations;
+#endif
+
 }  // namespace
 
-TEMPLATE_TEST_CASE("mechanism jacobian: Andrews' mechanism in its motion, against differences",
-                   "[joint][jacobian]", EulerParameters, RotationVector) {
+#if !defined(TUMBLE_TEST_SLICE) || TUMBLE_TEST_SLICE < 2  // slice 2 has no parameterization
+TEMPLATE_LIST_TEST_CASE("mechanism jacobian: Andrews' mechanism in its motion, against differences",
+                        "[joint][jacobian]", TUMBLE_TEST_SLICED_NAME(JacobianSlice)) {
   const andrews::Andrews<TestType> m;
   static_assert(andrews::Andrews<TestType>::SceneT::differentiable);
   // A state of the motion, 5 ms after the start: the crank at 1000 rad/s.
@@ -120,6 +134,9 @@ TEMPLATE_TEST_CASE("mechanism jacobian: Andrews' mechanism in its motion, agains
   }));
 }
 
+#endif  // slices 0 and 1
+
+#if TUMBLE_TEST_IN_SLICE(2)
 TEST_CASE("mechanism jacobian: a spatial double pendulum with a spring, off its constraints",
           "[joint][jacobian]") {
   using Link = RigidBody<EulerZYX>;
@@ -146,24 +163,4 @@ TEST_CASE("mechanism jacobian: a spatial double pendulum with a spring, off its 
   const SceneState st = scene.initial_state();  // placed roughly: off the joints by centimetres
   CHECK(matches_differences(scene, ws, 0.3, st, [](int) { return 1.0 / 32; }));
 }
-
-TEST_CASE("mechanism jacobian: BDF on Andrews' mechanism with it and with difference quotients",
-          "[joint][jacobian]") {
-  const andrews::Andrews<> m;
-  for (const bool exact : {true, false}) {
-    const andrews::Run r = andrews::run(m, [&](const std::vector<double>& times, const auto& obs) {
-      SceneIntegratorOptions opt;
-      opt.rtol = 1e-9;
-      opt.atol = 1e-9;
-      opt.cvode.use_system_jacobian = exact;
-      SceneIntegrator<andrews::Andrews<>::SceneT> integrator(m.scene, 0.0, opt);
-      integrator.integrate(times, obs);
-      INFO((exact ? "exact" : "difference quotients")
-           << ": " << integrator.statistics().steps << " steps");
-    });
-    INFO((exact ? "exact" : "difference quotients")
-         << ": angles " << andrews::mixed_error(r.q, andrews::kEnd) << ", energy " << r.energy);
-    CHECK(andrews::mixed_error(r.q, andrews::kEnd) <= 3e-7);
-    CHECK(r.energy <= 3e-7);
-  }
-}
+#endif  // TUMBLE_TEST_IN_SLICE(2)

@@ -139,17 +139,20 @@ template <std::size_t K>
 using ParameterizationSlice = SliceOf<K, TUMBLE_TEST_SLICES, SlicedParameterizations>;
 #define TUMBLE_TEST_PARAMETERIZATIONS tumble::test::ParameterizationSlice<TUMBLE_TEST_SLICE>
 #define TUMBLE_TEST_PRIMARY_SLICE (TUMBLE_TEST_SLICE == 0)
+#define TUMBLE_TEST_IN_SLICE(k) (TUMBLE_TEST_SLICE == (k) % TUMBLE_TEST_SLICES)
 #define TUMBLE_TEST_SLICED_NAME(name) \
   TUMBLE_TEST_CAT(name, TUMBLE_TEST_CAT(_slice, TUMBLE_TEST_SLICE))
 #else
 #define TUMBLE_TEST_PARAMETERIZATIONS tumble::test::SlicedParameterizations
 #define TUMBLE_TEST_PRIMARY_SLICE 1
+#define TUMBLE_TEST_IN_SLICE(k) 1
 #define TUMBLE_TEST_SLICED_NAME(name) name
 #endif
 // TUMBLE_TEST_PRIMARY_SLICE: true in slice 0 and in an unsliced build. A sliced source that links
 // all its slices into one executable guards what is not per parameterization with it, and names
 // a type list of its own (a product with AllParameterizations, say) TUMBLE_TEST_SLICED_NAME(name):
-// name_slice<k>, so that the Catch2 names of the slices differ.
+// name_slice<k>, so that the Catch2 names of the slices differ. TUMBLE_TEST_IN_SLICE(k): true in
+// slice k mod n and in an unsliced build, to spread such parts over the slices.
 #define TUMBLE_TEST_CAT2(a, b) a##b
 #define TUMBLE_TEST_CAT(a, b) TUMBLE_TEST_CAT2(a, b)
 

@@ -23,7 +23,7 @@
 // rank that changes at an isolated position makes the right-hand side jump there: Bricard's
 // mechanism (rank 29 of 30 rows) meets a position where a second row becomes dependent for an
 // instant, and there the threshold dropped a row whose reaction has a finite limit, so the
-// acceleration jumped and the step size collapsed (tests/joint/iftomm.test.cpp, A04). With the
+// acceleration jumped and the step size collapsed (tests/joint/bricard.test.cpp, A04). With the
 // rows frozen, the retained rows stay independent there, as the same mechanism with its last
 // hinge made a universal joint (29 independent rows, the same motion) shows.
 //
