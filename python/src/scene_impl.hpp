@@ -261,10 +261,23 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
     return opt;
   }
 
+  /// The state sizes of a scene of one body: free ([r; theta; v; omega]) or held at a fixed point
+  /// ([theta; omega]).
+  static constexpr int kFree = state_size<SceneT, Centroid>;
+  static constexpr int kHeld = state_size<SceneT, Fixed>;
+  static_assert(kFree != kHeld && state_size<SceneT, Offset> == kFree);
+
   /// Calls f(make, method name) with make(scene, t0, s0) constructing the integrator the options
   /// name (the method's name empty for the front door, whose statistics say what ran). The one
   /// place where the method's name chooses an integrator: single runs and ensembles share it.
-  template <class F> static void with_factory(const RunOptions& o, F&& f) {
+  /// Odeint's integrator of a scene of one body's size (kFree or kHeld) has the size at compile
+  /// time, as the C++ ensemble study's: a std::array state, whose stage loops (Odeint's
+  /// array_algebra) run about half the instructions of the std::vector's (range_algebra): the
+  /// free MRP body's run, 12 states, 0.77x the instructions and 0.9x the time
+  /// (docs/benchmarks/python.md). Any other size: Eigen::Dynamic. The same method, steps and
+  /// stage arithmetic; the initial step's estimate (a mean over the entries) may round otherwise.
+  template <class F> void with_factory(const RunOptions& o, F&& f) const {
+    const int size = scene_.size();
     if (o.method == "auto") {
       f(
           [opt = auto_options(o)](const SceneT& s, double t, const SceneState& y) {
@@ -279,11 +292,20 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
           o.method == "bdf" ? std::string("BDF (SceneIntegrator, CVODE)")
                             : std::string("Adams (SceneIntegrator, CVODE)"));
     } else {
-      f(
-          [opt = odeint_options(o)](const SceneT& s, double t, const SceneState& y) {
-            return OdeintIntegrator<SceneT>(s, t, y, opt);
-          },
-          o.method + " (OdeintIntegrator)");
+      const auto odeint = [&]<int N>() {
+        f(
+            [opt = odeint_options(o)](const SceneT& s, double t, const SceneState& y) {
+              return OdeintIntegrator<SceneT, N>(s, t, y, opt);
+            },
+            o.method + " (OdeintIntegrator)");
+      };
+      if (size == kFree) {
+        odeint.template operator()<kFree>();
+      } else if (size == kHeld) {
+        odeint.template operator()<kHeld>();
+      } else {
+        odeint.template operator()<Eigen::Dynamic>();
+      }
     }
   }
 
