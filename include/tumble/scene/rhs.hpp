@@ -90,21 +90,21 @@ template <bool Checked, class E, class Y, class K, class Ydot>
   }
 }
 
-/// A scene without loads (and joints), one body: its rates from its own block, with a zero
-/// wrench; nothing is written to the workspace (no load reads it). Each of rhs()'s two unloaded
-/// branches loops over the bodies itself and calls this: with the loop in a shared helper instead,
-/// the same work made a lean body's Fehlberg 7(8) run 19 % slower under GCC 12 -O3 (code
-/// generation, not work: docs/benchmarks/floors.md, 2026-11-27).
-template <bool Checked, class E, class Y, class Ydot>
-[[gnu::always_inline]] inline void unloaded_entry_rates(const E& e, const Y& y,
-                                                        const Matrix3<double>& base, bool stabilize,
-                                                        Ydot& ydot) {
-  using Body = std::remove_cvref_t<decltype(e.body)>;
-  typename Body::Kinematics k;
-  body_kinematics<E::form>(e.body, y.template segment<Body::nq>(e.offset),
-                           y.template segment<E::rate_size>(e.rates), base,
-                           Body::reference == ReferencePoint::offset, k);
-  entry_rates<Checked>(e, y, k, Wrench<double>{}, stabilize, ydot);
+/// A scene without loads (and joints): each body's rates from its own block, with a zero
+/// wrench; nothing is written to the workspace (no load reads it).
+template <bool Checked, class SceneT, class Y, class Ydot>
+[[gnu::always_inline]] inline void unloaded_rates(const SceneT& scene, SceneWorkspace<SceneT>& ws,
+                                                  const Y& y, std::span<const Matrix3<double>> base,
+                                                  Ydot& ydot) {
+  scene.for_each_entry([&](const auto& e) {
+    using E = std::remove_cvref_t<decltype(e)>;
+    using Body = std::remove_cvref_t<decltype(e.body)>;
+    typename Body::Kinematics k;
+    body_kinematics<E::form>(e.body, y.template segment<Body::nq>(e.offset),
+                             y.template segment<E::rate_size>(e.rates), base[e.id],
+                             Body::reference == ReferencePoint::offset, k);
+    entry_rates<Checked>(e, y, k, Wrench<double>{}, ws.stabilize_constraints, ydot);
+  });
 }
 
 }  // namespace detail
@@ -117,17 +117,24 @@ void rhs(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y& y,
          std::span<const Matrix3<double>> base, Ydot&& ydot) {
   constexpr bool checked = Check == FiniteCheck::each_call;
   if constexpr (std::tuple_size_v<typename SceneT::LoadTypes> == 0 && !SceneT::has_joints) {
+    // detail::unloaded_rates written out: calling it here (the same work) made a lean body's
+    // Fehlberg 7(8) run 17-19 % slower under GCC 12 -O3, and a loop of its per-body step 25 %
+    // with N = Dynamic (docs/benchmarks/floors.md, 2026-11-27).
     scene.for_each_entry([&](const auto& e) {
-      detail::unloaded_entry_rates<checked>(e, y, base[e.id], ws.stabilize_constraints, ydot);
+      using E = std::remove_cvref_t<decltype(e)>;
+      using Body = std::remove_cvref_t<decltype(e.body)>;
+      typename Body::Kinematics k;
+      detail::body_kinematics<E::form>(e.body, y.template segment<Body::nq>(e.offset),
+                                       y.template segment<E::rate_size>(e.rates), base[e.id],
+                                       Body::reference == ReferencePoint::offset, k);
+      detail::entry_rates<checked>(e, y, k, Wrench<double>{}, ws.stabilize_constraints, ydot);
     });
   } else {
     if constexpr (!SceneT::has_joints) {
       // Load types listed but none attached (a scene type made for any loads, as the Python
       // package's): the same path, chosen at run time (14 % of a tumbling body's run).
       if (scene.load_count() == 0) {
-        scene.for_each_entry([&](const auto& e) {
-          detail::unloaded_entry_rates<checked>(e, y, base[e.id], ws.stabilize_constraints, ydot);
-        });
+        detail::unloaded_rates<checked>(scene, ws, y, base, ydot);
         return;
       }
     }
