@@ -117,7 +117,18 @@ void rhs(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y& y,
          std::span<const Matrix3<double>> base, Ydot&& ydot) {
   constexpr bool checked = Check == FiniteCheck::each_call;
   if constexpr (std::tuple_size_v<typename SceneT::LoadTypes> == 0 && !SceneT::has_joints) {
-    detail::unloaded_rates<checked>(scene, ws, y, base, ydot);
+    // detail::unloaded_rates written out: calling it here (the same work) made a lean body's
+    // Fehlberg 7(8) run 17-19 % slower under GCC 12 -O3, and a loop of its per-body step 25 %
+    // with N = Dynamic (docs/benchmarks/floors.md, 2026-11-27).
+    scene.for_each_entry([&](const auto& e) {
+      using E = std::remove_cvref_t<decltype(e)>;
+      using Body = std::remove_cvref_t<decltype(e.body)>;
+      typename Body::Kinematics k;
+      detail::body_kinematics<E::form>(e.body, y.template segment<Body::nq>(e.offset),
+                                       y.template segment<E::rate_size>(e.rates), base[e.id],
+                                       Body::reference == ReferencePoint::offset, k);
+      detail::entry_rates<checked>(e, y, k, Wrench<double>{}, ws.stabilize_constraints, ydot);
+    });
   } else {
     if constexpr (!SceneT::has_joints) {
       // Load types listed but none attached (a scene type made for any loads, as the Python
