@@ -35,12 +35,7 @@ using tumble::Scene;
 /// re-centered Euler angles, the MRP shadow set); the hanging top is a rotation vector.
 using TopParameterizations =
     std::tuple<tumble::EulerParameters, tumble::EulerZYX, tumble::ModifiedRodriguesParameters>;
-#if defined(TUMBLE_TEST_SLICE) && defined(TUMBLE_TEST_SLICES)
-using TUMBLE_TEST_SLICED_NAME(TopSlice) =
-    tumble::test::SliceOf<TUMBLE_TEST_SLICE, TUMBLE_TEST_SLICES, TopParameterizations>;
-#else
-using TopSlice = TopParameterizations;
-#endif
+using TUMBLE_TEST_SLICED_NAME(TopSlice) = tumble::test::ThisSlice<TopParameterizations>;
 
 }  // namespace
 

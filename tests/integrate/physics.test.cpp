@@ -335,12 +335,7 @@ using OffsetParameterizations =
                tumble::RodriguesParameters, tumble::ModifiedRodriguesParameters,
                tumble::RotationVector>;
 // Sliced like the full list (the slices' names differ: OffsetSlice_slice<k>).
-#if defined(TUMBLE_TEST_SLICE) && defined(TUMBLE_TEST_SLICES)
-using TUMBLE_TEST_SLICED_NAME(OffsetSlice) =
-    tumble::test::SliceOf<TUMBLE_TEST_SLICE, TUMBLE_TEST_SLICES, OffsetParameterizations>;
-#else
-using OffsetSlice = OffsetParameterizations;
-#endif
+using TUMBLE_TEST_SLICED_NAME(OffsetSlice) = tumble::test::ThisSlice<OffsetParameterizations>;
 
 // The centroid moves as a free particle: r_g(t) = r_g0 + v_g0 t + g t^2 / 2, while the body
 // spins and tumbles about it with its angular momentum about the centroid, R I_g omega,

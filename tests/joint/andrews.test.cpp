@@ -26,12 +26,7 @@ using namespace andrews_test;
 
 /// One parameterization of each family that keeps the plane's rotations regular.
 using AndrewsParameterizations = std::tuple<EulerParameters, EulerZYX, RotationVector>;
-#if defined(TUMBLE_TEST_SLICE) && defined(TUMBLE_TEST_SLICES)
-using TUMBLE_TEST_SLICED_NAME(AndrewsSlice) =
-    tumble::test::SliceOf<TUMBLE_TEST_SLICE, TUMBLE_TEST_SLICES, AndrewsParameterizations>;
-#else
-using AndrewsSlice = AndrewsParameterizations;
-#endif
+using TUMBLE_TEST_SLICED_NAME(AndrewsSlice) = tumble::test::ThisSlice<AndrewsParameterizations>;
 
 }  // namespace
 

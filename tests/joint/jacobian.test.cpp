@@ -106,12 +106,7 @@ template <class SceneT> std::vector<char> position_columns(const SceneT& scene) 
 
 /// Andrews' mechanism in a constraint chart and in a vector chart (its shadow switches).
 using JacobianParameterizations = std::tuple<EulerParameters, RotationVector>;
-#if defined(TUMBLE_TEST_SLICE) && defined(TUMBLE_TEST_SLICES)
-using TUMBLE_TEST_SLICED_NAME(JacobianSlice) =
-    tumble::test::SliceOf<TUMBLE_TEST_SLICE, TUMBLE_TEST_SLICES, JacobianParameterizations>;
-#else
-using JacobianSlice = JacobianParameterizations;
-#endif
+using TUMBLE_TEST_SLICED_NAME(JacobianSlice) = tumble::test::ThisSlice<JacobianParameterizations>;
 
 }  // namespace
 

@@ -28,12 +28,7 @@ constexpr double g0 = 9.81;
 /// One of each family: Euler parameters, Euler angles, and the three vector charts.
 using PendulumParameterizations = std::tuple<EulerParameters, EulerZYX, RotationVector,
                                              ModifiedRodriguesParameters, RodriguesParameters>;
-#if defined(TUMBLE_TEST_SLICE) && defined(TUMBLE_TEST_SLICES)
-using TUMBLE_TEST_SLICED_NAME(PendulumSlice) =
-    tumble::test::SliceOf<TUMBLE_TEST_SLICE, TUMBLE_TEST_SLICES, PendulumParameterizations>;
-#else
-using PendulumSlice = PendulumParameterizations;
-#endif
+using TUMBLE_TEST_SLICED_NAME(PendulumSlice) = tumble::test::ThisSlice<PendulumParameterizations>;
 
 Matrix3d about_y(double a) { return Eigen::AngleAxisd(a, Vector3d::UnitY()).toRotationMatrix(); }
 

@@ -137,12 +137,15 @@ static_assert(TUMBLE_TEST_SLICE >= 0 && TUMBLE_TEST_SLICE < TUMBLE_TEST_SLICES,
 /// name passes through Catch2's macros, which would split it at a comma).
 template <std::size_t K>
 using ParameterizationSlice = SliceOf<K, TUMBLE_TEST_SLICES, SlicedParameterizations>;
+/// The part of a source's own type list that this slice holds (all of it in an unsliced build).
+template <class List> using ThisSlice = SliceOf<TUMBLE_TEST_SLICE, TUMBLE_TEST_SLICES, List>;
 #define TUMBLE_TEST_PARAMETERIZATIONS tumble::test::ParameterizationSlice<TUMBLE_TEST_SLICE>
 #define TUMBLE_TEST_PRIMARY_SLICE (TUMBLE_TEST_SLICE == 0)
 #define TUMBLE_TEST_IN_SLICE(k) (TUMBLE_TEST_SLICE == (k) % TUMBLE_TEST_SLICES)
 #define TUMBLE_TEST_SLICED_NAME(name) \
   TUMBLE_TEST_CAT(name, TUMBLE_TEST_CAT(_slice, TUMBLE_TEST_SLICE))
 #else
+template <class List> using ThisSlice = List;
 #define TUMBLE_TEST_PARAMETERIZATIONS tumble::test::SlicedParameterizations
 #define TUMBLE_TEST_PRIMARY_SLICE 1
 #define TUMBLE_TEST_IN_SLICE(k) 1
@@ -151,8 +154,10 @@ using ParameterizationSlice = SliceOf<K, TUMBLE_TEST_SLICES, SlicedParameterizat
 // TUMBLE_TEST_PRIMARY_SLICE: true in slice 0 and in an unsliced build. A sliced source that links
 // all its slices into one executable guards what is not per parameterization with it, and names
 // a type list of its own (a product with AllParameterizations, say) TUMBLE_TEST_SLICED_NAME(name):
-// name_slice<k>, so that the Catch2 names of the slices differ. TUMBLE_TEST_IN_SLICE(k): true in
-// slice k mod n and in an unsliced build, to spread such parts over the slices.
+// name_slice<k>, so that the Catch2 names of the slices differ; ThisSlice<List> is its part in
+// this slice: using TUMBLE_TEST_SLICED_NAME(MySlice) = tumble::test::ThisSlice<MyList>;
+// TUMBLE_TEST_IN_SLICE(k): true in slice k mod n and in an unsliced build, to spread such parts
+// over the slices.
 #define TUMBLE_TEST_CAT2(a, b) a##b
 #define TUMBLE_TEST_CAT(a, b) TUMBLE_TEST_CAT2(a, b)
 
