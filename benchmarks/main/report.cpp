@@ -207,6 +207,60 @@ std::string header_text(const Options& o, const std::filesystem::path& out, int 
   return s.str();
 }
 
+namespace {
+
+/// A mechanism's cost against its number of bodies: tumble_micro's hinged chain (micro/chain.cpp),
+/// a right-hand side (the banded constraint solve included) and a projection onto the constraints,
+/// per call and per body, with the log-log slope of the cost per call from 100 bodies on.
+std::string chain_table(const MicroTimes& ns) {
+  const std::vector<std::pair<std::string, std::string>> cols = {
+      {"chain_rhs", "rhs"}, {"chain_projection", "projection"}};
+  std::vector<int> sizes;
+  for (int n = 1; n <= 10000; n *= 10) {
+    if (ns.contains("chain_rhs/" + std::to_string(n)) ||
+        ns.contains("chain_projection/" + std::to_string(n))) {
+      sizes.push_back(n);
+    }
+  }
+  if (sizes.empty()) {
+    return "";
+  }
+  std::ostringstream s;
+  s << "  a mechanism, a chain of n links hinged end to end: CPU time of a right-hand side (the\n"
+       "  banded constraint solve included) and of a projection onto the constraints\n"
+    << "  " << lpad("n", 6);
+  for (const auto& c : cols) {
+    s << lpad(c.second, 12) << lpad("per body", 12);
+  }
+  s << "\n";
+  for (int n : sizes) {
+    s << "  " << lpad(std::to_string(n), 6);
+    for (const auto& c : cols) {
+      const auto it = ns.find(c.first + "/" + std::to_string(n));
+      const bool have = it != ns.end();
+      s << lpad(have ? duration(1e-9 * it->second) : "-", 12)
+        << lpad(have ? duration(1e-9 * it->second / n) : "-", 12);
+    }
+    s << "\n";
+  }
+  s << "  " << lpad("slope", 6);
+  for (const auto& c : cols) {
+    std::vector<std::pair<double, double>> large;
+    for (int n : sizes) {
+      const auto it = ns.find(c.first + "/" + std::to_string(n));
+      if (n >= 100 && it != ns.end()) {
+        large.emplace_back(n, it->second);
+      }
+    }
+    const double slope = large.size() >= 2 ? loglog_slope(large) : std::nan("");
+    s << lpad(std::isfinite(slope) ? fmt("%.2f", slope) : "-", 24);
+  }
+  s << "\n  (slope: log-log fit of the cost per call against n over n >= 100; 1 = linear)\n";
+  return s.str();
+}
+
+}  // namespace
+
 std::string micro_table(const MicroTimes& ns) {
   auto cell = [&](const std::string& name) {
     const auto it = ns.find(name);
@@ -264,6 +318,7 @@ std::string micro_table(const MicroTimes& ns) {
   s << "  (3 loads: gravity, a point force, a moment; floor: the same equations written by hand;\n"
        "   dense: the generic assembly and LU that tumble avoids"
     << (peers ? ")\n" : "; Pinocchio, MuJoCo: not installed)\n");
+  s << chain_table(ns);
   return s.str();
 }
 

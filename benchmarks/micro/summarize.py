@@ -48,8 +48,9 @@ QUICK_FILTER = (
     "|^hand_written"
     "|^pinocchio_aba/|^pinocchio_crba_nle_solve/|^mujoco_forward/"
     "|^dense_lu/(EulerParameters|EulerZYX)/"
-    "|^chain_(rhs|projection)/(100|10000)$"
+    "|^chain_(rhs|projection)/(1|10|100|1000|10000)$"
 )
+CHAIN_SIZES = [1, 10, 100, 1000, 10000]
 
 EP = "EulerParameters"
 THREE_PARAMETER_ORDER = [
@@ -230,6 +231,36 @@ def print_text(summary, times, context, markdown, out):
            if missed else ""), file=out)
 
 
+def print_chain(times, markdown, out):
+    """A hinged chain's cost against its number of bodies (micro/chain.cpp), per call and per body."""
+    rows = [n for n in CHAIN_SIZES
+            if f"chain_rhs/{n}" in times or f"chain_projection/{n}" in times]
+    if not rows:
+        return
+
+    def cell(name, n, per_body):
+        v = times.get(f"{name}/{n}")
+        if v is None:
+            return "-"
+        v = v / n if per_body else v
+        return f"{v:.0f} ns" if v < 1e4 else (f"{v / 1e3:.1f} us" if v < 1e6 else f"{v / 1e6:.2f} ms")
+
+    cols = [("right-hand side", "chain_rhs", False), ("per body", "chain_rhs", True),
+            ("projection", "chain_projection", False), ("per body", "chain_projection", True)]
+    title = ("a chain of n links hinged end to end (micro/chain.cpp): CPU time of a right-hand\n"
+             "side (the banded constraint solve included) and of a projection onto the constraints")
+    if markdown:
+        print(f"\n{title}\n\n| n | " + " | ".join(c[0] for c in cols) + " |", file=out)
+        print("| ---: |" + " ---: |" * len(cols), file=out)
+        for n in rows:
+            print(f"| {n} | " + " | ".join(cell(c[1], n, c[2]) for c in cols) + " |", file=out)
+    else:
+        print(f"\n{title}", file=out)
+        print(f"  {'n':>6}" + "".join(f"{c[0]:>17}" for c in cols), file=out)
+        for n in rows:
+            print(f"  {n:>6}" + "".join(f"{cell(c[1], n, c[2]):>17}" for c in cols), file=out)
+
+
 def print_components(times, markdown, out):
     """Every parameterization's component times (the full run)."""
     cols = [("R", "rotation/{p}"), ("G", "G/{p}")]
@@ -312,6 +343,7 @@ def main(argv=None):
 
     summary = Summary(times).build()
     print_text(summary, times, context, args.markdown, sys.stdout)
+    print_chain(times, args.markdown, sys.stdout)
     if not args.no_components and not args.quick:
         print_components(times, args.markdown, sys.stdout)
     if args.csv:
