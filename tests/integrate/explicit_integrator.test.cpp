@@ -494,6 +494,67 @@ TEST_CASE("explicit integrator: a non-finite stage rejects the step, never a NaN
   }
 }
 
+/// A moment that cannot be evaluated after t1: it throws tumble::RecoverableError, the exception by
+/// which a system's callback asks for a shorter step (integrate/errors.hpp).
+struct RecoverableAfter {
+  double t1 = 1.0;
+  static constexpr bool needs_rotation(tumble::ReferencePoint) { return false; }
+  template <class S, class K>
+  void apply(const S& t, const K& /*k*/, tumble::Wrench<S>& /*w*/) const {
+    if (t > t1) {
+      throw tumble::RecoverableError("no moment after t1");
+    }
+  }
+};
+
+// A load's RecoverableError makes both integrators retry with shorter steps, as CVODE's user
+// guide has a recoverable right-hand side failure: each steps up to the wall at t1 and stops just
+// before it, finite. (Before, the explicit integrator stopped at the first trial step past t1,
+// wherever that step started, as for any other exception of a load.)
+TEST_CASE("explicit integrator: a load's RecoverableError shortens the step, as in CVODE",
+          "[integrate][explicit_integrator]") {
+  using Body = RigidBody<tumble::EulerParameters>;
+  using SceneT = Scene<Bodies<Body>, Loads<RecoverableAfter>>;
+  SceneT scene;
+  const auto b = scene.add(Body(tumble::test::tumbling_mass()), {.rotation = kR0, .omega = kOmega});
+  scene.add_load(b, RecoverableAfter{1.0});
+  for (const OdeintMethod method :
+       {OdeintMethod::fehlberg78, OdeintMethod::dopri5, OdeintMethod::cash_karp54}) {
+    INFO(name(method));
+    OdeintIntegrator<SceneT, 13> integrator(scene, 0.0, options(method, 1e-10));
+    integrator.advance(0.9);
+    const long rejected = integrator.statistics().rejected_steps;
+    try {
+      integrator.advance(2.0);
+      FAIL("no exception");
+    } catch (const tumble::ExplicitIntegrationError& e) {
+      INFO(e.what());
+      CHECK(e.reason() == tumble::IntegrationFailure::step_size);
+    }
+    CHECK(integrator.time() <= 1.0);
+    CHECK(integrator.time() > 1.0 - 1e-9);
+    CHECK(integrator.state().y.allFinite());
+    CHECK(integrator.statistics().rejected_steps > rejected);
+  }
+  // CVODE (BDF) on the same scene: it too gets to the wall before it stops.
+  tumble::SceneIntegrator cvode(scene, 0.0,
+                                tumble::test::integrator_options(tumble::CvodeMethod::bdf, 1e-10));
+  cvode.advance(0.9);
+  CHECK_THROWS_AS(cvode.advance(2.0), tumble::IntegrationError);
+  CHECK(cvode.time() <= 1.0);
+  CHECK(cvode.time() > 1.0 - 1e-6);
+  // A RecoverableError at the state itself leaves nothing to retry: the load's exception is the
+  // cause of the integrator's callback error.
+  OdeintIntegrator<SceneT, 13> late(scene, 0.0, options(OdeintMethod::fehlberg78, 1e-10));
+  try {
+    late.reset(1.5, scene.initial_state());
+    FAIL("no exception");
+  } catch (const tumble::ExplicitIntegrationError& e) {
+    CHECK(e.reason() == tumble::IntegrationFailure::callback);
+    CHECK(std::string(e.what()).find("no moment after t1") != std::string::npos);
+  }
+}
+
 // After the first steps (which size nothing: every buffer is sized at construction), advancing
 // allocates nothing with a fixed-size state, across chart switches and events.
 TEST_CASE("explicit integrator: no heap allocation per step", "[integrate][explicit_integrator]") {

@@ -382,6 +382,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
         return true;
       } catch (const NonFiniteError&) {
         return false;
+      } catch (const RecoverableError&) {
+        return false;
       } catch (...) {
         detail::throw_callback_error(kWho, "rhs()", t_, t_);
       }
@@ -436,6 +438,12 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
           throw ExplicitIntegrationError(
               "tumble::OdeintIntegrator: the right-hand side is not finite at t = " + num(t_),
               IntegrationFailure::callback, t_);
+        }
+        ok = false;
+        h = 0.25 * h_try;
+      } catch (const RecoverableError&) {  // a load asks for a shorter step, as CVODE retries
+        if (!deriv_valid_) {
+          detail::throw_callback_error(kWho, "rhs()", t_, t_);
         }
         ok = false;
         h = 0.25 * h_try;
