@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include <nanobind/eigen/dense.h>
@@ -177,6 +178,11 @@ class PyScene {
     compiled_.reset();
   }
 
+  void add_user_load(int body, nb::handle fn) {
+    add_load({PythonLoad(nb::borrow<nb::object>(fn)), body, -1});
+    owned_.push_back(fn.ptr());
+  }
+
   void add_event(nb::handle function, int direction, nb::handle action) {
     check_not_running("add_event");
     if (!PyCallable_Check(function.ptr())) {
@@ -198,7 +204,29 @@ class PyScene {
     }
     events_.emplace_back(nb::borrow<nb::object>(function), direction,
                          nb::borrow<nb::object>(action));
+    owned_.push_back(function.ptr());
+    if (!action.is_none()) {
+      owned_.push_back(action.ptr());
+    }
     compiled_.reset();
+  }
+
+  /// For Python's cycle collector (a load or an event that refers to its scene, as a closure
+  /// over it does, makes a cycle through C++ it cannot see otherwise): the Python objects the
+  /// record holds, one reference each (the compiled scene's copies share them).
+  int traverse(visitproc visit, void* arg) const {
+    for (PyObject* o : owned_) {
+      Py_VISIT(o);
+    }
+    return 0;
+  }
+  /// Drops them (the cycle collector breaking a cycle): the Python loads and the events go.
+  void clear() {
+    compiled_.reset();
+    events_.clear();
+    std::erase_if(loads_,
+                  [](const LoadRecord& l) { return std::holds_alternative<PythonLoad>(l.load); });
+    owned_.clear();
   }
 
   const CompiledScene& compiled() const {
@@ -250,6 +278,7 @@ class PyScene {
   std::vector<BodyRecord> bodies_;
   std::vector<LoadRecord> loads_;
   std::vector<PythonEvent> events_;
+  std::vector<PyObject*> owned_;  // the Python objects of loads_ and events_ (see traverse)
   mutable std::unique_ptr<CompiledScene> compiled_;  // a cache of the record, rebuilt on change
   mutable int running_ = 0;  // integrations under way (Running), changed with the GIL held
 };
@@ -321,6 +350,27 @@ constexpr const char* kAddEventDoc =
     "records its message as the run's error). ValueError for a function that is not callable, "
     "a direction not in {-1, 0, 1}, an action that is neither None nor callable, or that "
     "returns no y of size() finite entries.";
+
+int scene_traverse(PyObject* self, visitproc visit, void* arg) {
+  if (nb::inst_ready(self)) {
+    if (const int r = nb::inst_ptr<PyScene>(self)->traverse(visit, arg); r != 0) {
+      return r;
+    }
+  }
+  Py_VISIT(Py_TYPE(self));
+  return 0;
+}
+
+int scene_clear(PyObject* self) {
+  if (nb::inst_ready(self)) {
+    nb::inst_ptr<PyScene>(self)->clear();
+  }
+  return 0;
+}
+
+PyType_Slot kSceneSlots[] = {{Py_tp_traverse, reinterpret_cast<void*>(scene_traverse)},
+                             {Py_tp_clear, reinterpret_cast<void*>(scene_clear)},
+                             {0, nullptr}};
 
 /// A getter of an array member: the array itself (it owns its data through a capsule), which
 /// def_ro's reference_internal policy does not allow.
@@ -433,7 +483,8 @@ void bind_scene(nb::module_& m) {
       "A scene: bodies of one parameterization (each framed at its centroid, at an offset, or "
       "held at a fixed point) and the loads on them; one state, one right-hand side. Bodies are "
       "numbered from 0 in the order of add(). Built into a compiled C++ scene when first "
-      "needed (the parameterizations with compiled scenes: tumble.scene_parameterizations()).")
+      "needed (the parameterizations with compiled scenes: tumble.scene_parameterizations()).",
+      nb::type_slots(kSceneSlots))
       .def(nb::init<>())
       .def("add", &PyScene::add, "body"_a, "position"_a = nb::none(), "rotation"_a = nb::none(),
            "velocity"_a = nb::none(), "omega"_a = nb::none(),
@@ -493,10 +544,7 @@ void bind_scene(nb::module_& m) {
           "A linear spring-damper between body points of bodies a and b (m, body components of "
           "each).")
       .def(
-          "add_user_load",
-          [](PyScene& s, int body, nb::callable fn) {
-            s.add_load({PythonLoad(nb::borrow<nb::object>(fn)), body, -1});
-          },
+          "add_user_load", [](PyScene& s, int body, nb::callable fn) { s.add_user_load(body, fn); },
           "body"_a, "fn"_a,
           "A Python callable as a load: fn(t, position, rotation, velocity, omega) -> (force, "
           "moment), force in inertial components at the reference point (N), moment about it "

@@ -2,9 +2,11 @@
 and its bounce, a body spinning about a principal axis), direction filtering counted against the
 crossings, errors, ensembles, and the GIL released between the Python calls."""
 
+import gc
 import sys
 import threading
 import time
+import weakref
 
 import numpy as np
 import pytest
@@ -325,3 +327,22 @@ def test_the_gil_is_released_between_the_event_calls():
     assert done["seconds"] > 0.01, "the integration was too short to tell"
     assert counted > 1000
 
+
+def test_a_scene_and_its_callables_are_collected():
+    # An event that refers to its scene (a closure over it) makes a cycle through C++: Python's
+    # cycle collector must see it, or the scene and its callables would never be freed.
+    scene, b = falling_scene(5.0)
+
+    def function(t, s):
+        return scene.position(b, s)[2]
+
+    def load(t, r, R, v, w):
+        return scene.size * np.zeros(3), np.zeros(3)
+
+    scene.add_event(function, direction=-1, action=lambda t, s: scene.state(s.y).y)
+    scene.add_user_load(b, load)
+    assert scene.integrate([2.0]).statistics.events == 1
+    refs = [weakref.ref(function), weakref.ref(load)]
+    del scene, function, load
+    gc.collect()
+    assert [r() for r in refs] == [None, None]
