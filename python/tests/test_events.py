@@ -117,9 +117,6 @@ SPIN_TIME_TOLERANCE = {"bdf": 5e-6, "adams": 5e-6}
 def test_spin_angle_crossings_under_each_direction(method, direction, name):
     if name not in tumble.scene_parameterizations():
         pytest.skip(f"no compiled scene for {name} in this build")
-    if name == "EulerParameters" and method not in ("bdf", "adams"):
-        pytest.skip("the explicit integrators may count a crossing twice after the Euler-parameter "
-                    "projection (test_explicit_euler_parameters_count_a_crossing_once)")
     scene, _ = spinning_scene(name)
     times = []
     scene.add_event(r00, direction=direction, action=lambda t, s: times.append(t))
@@ -133,18 +130,6 @@ def test_spin_angle_crossings_under_each_direction(method, direction, name):
     counted.add_event(r00, direction=direction)
     assert counted.integrate([SPIN_END], method=method, **SPIN_OPTIONS).statistics.events == len(
         expected)
-
-
-@pytest.mark.xfail(strict=True, reason="tumble::OdeintIntegrator: after the cut at a root the "
-                   "Euler-parameter projection can move the event function back to its old side "
-                   "by rounding (2.2e-16 -> -4.0e-12 here), so the next step finds the same root "
-                   "again; the event function is re-evaluated after the projection")
-def test_explicit_euler_parameters_count_a_crossing_once():
-    scene, _ = spinning_scene("EulerParameters")
-    times = []
-    scene.add_event(r00, direction=1, action=lambda t, s: times.append(t))
-    run = scene.integrate([SPIN_END], method="fehlberg78", **SPIN_OPTIONS)
-    assert run.statistics.events == 2 and times == pytest.approx(spin_crossings(1), abs=1e-7)
 
 
 def test_event_state_is_the_state_and_its_bodies():
