@@ -553,7 +553,11 @@ void bind_scene(nb::module_& m) {
           "and a scene with one has no exact Jacobian (BDF uses difference quotients); an "
           "ensemble with one runs its loads one thread at a time.")
       .def("add_event", &PyScene::add_event, "function"_a, "direction"_a = 0,
-           "action"_a = nb::none(), kAddEventDoc)
+           "action"_a = nb::none(),
+           nb::sig("def add_event(self, function: collections.abc.Callable[[float, EventState], "
+                   "float], direction: int = 0, action: collections.abc.Callable[[float, "
+                   "EventState], object] | None = None) -> None"),
+           kAddEventDoc)
       .def_prop_ro(
           "size", [](const PyScene& s) { return s.compiled().size(); }, "The length of y.")
       .def_prop_ro("body_count", [](const PyScene& s) { return s.bodies().size(); })
