@@ -164,7 +164,8 @@ def test_bad_input():
     scene, b = falling_scene(5.0)
     with pytest.raises(ValueError, match="'function' must be callable"):
         scene.add_event(3.0)
-    with pytest.raises(ValueError, match=r"'direction' must be \+1 \(rising\), -1 \(falling\) or 0"):
+    with pytest.raises(ValueError,
+                       match=r"'direction' must be \+1 \(rising\), -1 \(falling\) or 0"):
         scene.add_event(lambda t, s: 1.0, direction=2)
     with pytest.raises(ValueError, match="'action' must be None or callable"):
         scene.add_event(lambda t, s: 1.0, action="bounce")
