@@ -5,8 +5,10 @@
 //  - tumble::IntegrationError and its subclasses -> tumble.IntegrationError (a RuntimeError),
 //    with the attributes `reason` (IntegrationFailure's name, e.g. 'step_budget') and `time`
 //    (the time reached, s). When a callback stopped the integration (reason 'callback', under
-//    every method), what it threw is the __cause__: the Python exception a Python load raised
-//    (load_error.hpp), or a RuntimeError with the message of a C++ one.
+//    every method), what it threw is the __cause__: the Python exception a Python load or event
+//    function raised (load_error.hpp), or a RuntimeError with the message of a C++ one;
+//  - a PythonLoadError no integrator wrapped (an event action's exception, which the integrators
+//    pass through unchanged) -> the Python exception itself.
 
 #include "tumble/integrate/errors.hpp"
 
@@ -90,6 +92,11 @@ void bind_errors(nanobind::module_& m) {
             PyException_SetCause(exc.ptr(), cause);  // steals the reference
           }
           PyErr_SetObject(exc_type, exc.ptr());
+        } catch (const PythonLoadError& e) {
+          // A Python callback's exception that no integrator wrapped (an event action's: they
+          // pass those through unchanged): the Python exception itself, raised again.
+          const nb::handle exc = e.exception();
+          PyErr_SetObject(reinterpret_cast<PyObject*>(Py_TYPE(exc.ptr())), exc.ptr());
         }
       },
       type.ptr());

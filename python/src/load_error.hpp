@@ -1,8 +1,10 @@
 #pragma once
-// What a Python user load raised, carried through the C++ integrators as a C++ exception: what()
-// in words ("tumble: the user load raised TypeName: message", no traceback), and the Python
-// exception object itself, which errors.cpp makes the __cause__ of the tumble.IntegrationError
-// the integrator stops with (reason 'callback'), as `raise IntegrationError from original` would.
+// What a Python user load or event raised, carried through the C++ integrators as a C++
+// exception: what() in words ("tumble: the user load raised TypeName: message", "the event
+// function raised ...", no traceback), and the Python exception object itself, which errors.cpp
+// makes the __cause__ of the tumble.IntegrationError the integrator stops with (reason
+// 'callback'), as `raise IntegrationError from original` would; or, for an event action's (which
+// the integrators pass through unchanged), raises again.
 
 #include <memory>
 #include <stdexcept>

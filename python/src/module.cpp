@@ -12,4 +12,5 @@ NB_MODULE(_tumble, m) {
   tumble::python::bind_orientation(m);
   tumble::python::bind_body(m);
   tumble::python::bind_scene(m);
+  tumble::python::bind_events(m);
 }

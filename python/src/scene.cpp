@@ -1,6 +1,6 @@
-// Python bindings of scenes: tumble.Scene (a record of bodies and loads, built into a compiled
-// C++ scene when first needed; scene_api.hpp), tumble.State, tumble.Trajectory,
-// tumble.EnsembleResult, tumble.Statistics, and the Python load.
+// Python bindings of scenes: tumble.Scene (a record of bodies, loads and events, built into a
+// compiled C++ scene when first needed; scene_api.hpp), tumble.State, tumble.Trajectory,
+// tumble.EnsembleResult, tumble.Statistics, and the Python load (the Python events: events.cpp).
 
 #include <cmath>
 #include <cstddef>
@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include <nanobind/eigen/dense.h>
@@ -69,13 +70,6 @@ OutArray numpy(std::vector<double>&& v, std::initializer_list<std::size_t> shape
   return OutArray(data->data(), shape.size(), shape.begin(), owner);
 }
 
-// --- State -----------------------------------------------------------------------------------
-
-/// tumble.State: y and the chart bases of every body (a whole state: the same attitude always).
-struct PyState {
-  SceneState state;
-};
-
 // --- results ---------------------------------------------------------------------------------
 
 /// tumble.Trajectory: the arrays; a whole state (state(k)) is assembled from y and bases when
@@ -129,8 +123,23 @@ void split_bodies(const std::vector<double>& flat, std::size_t rows, std::size_t
 
 class PyScene {
  public:
+  /// Marks the scene as integrating while it lives (taken and dropped with the GIL held): the
+  /// record cannot change then, since that would free the compiled scene under the run (from
+  /// a Python load or event of the run, or from another thread).
+  class Running {
+   public:
+    explicit Running(const PyScene& s) : s_(s) { ++s_.running_; }
+    ~Running() { --s_.running_; }
+    Running(const Running&) = delete;
+    Running& operator=(const Running&) = delete;
+
+   private:
+    const PyScene& s_;
+  };
+
   int add(const BodyHandle& body, nb::handle position, nb::handle rotation, nb::handle velocity,
           nb::handle omega) {
+    check_not_running("add");
     if (!bodies_.empty() &&
         body.body->parameterization().name() != bodies_.front().body->parameterization().name()) {
       throw std::invalid_argument(
@@ -160,6 +169,7 @@ class PyScene {
   }
 
   void add_load(LoadRecord load) {
+    check_not_running("add a load");
     check_body(load.a, "body");
     if (load.b >= 0 || std::holds_alternative<SpringDamperBetween>(load.load)) {
       check_body(load.b, "other body");
@@ -168,14 +178,73 @@ class PyScene {
     compiled_.reset();
   }
 
+  void add_user_load(int body, nb::handle fn) {
+    add_load({PythonLoad(nb::borrow<nb::object>(fn)), body, -1});
+    owned_.push_back(fn.ptr());
+  }
+
+  void add_event(nb::handle function, int direction, nb::handle action) {
+    check_not_running("add_event");
+    if (!PyCallable_Check(function.ptr())) {
+      throw std::invalid_argument(
+          "tumble.Scene.add_event: 'function' must be callable as function(t, state) -> float, "
+          "got " +
+          std::string(Py_TYPE(function.ptr())->tp_name));
+    }
+    if (direction < -1 || direction > 1) {
+      throw std::invalid_argument("tumble.Scene.add_event: 'direction' must be +1 (rising), -1 "
+                                  "(falling) or 0 (both), got " +
+                                  std::to_string(direction));
+    }
+    if (!action.is_none() && !PyCallable_Check(action.ptr())) {
+      throw std::invalid_argument(
+          "tumble.Scene.add_event: 'action' must be None or callable as action(t, state) -> y "
+          "or None, got " +
+          std::string(Py_TYPE(action.ptr())->tp_name));
+    }
+    events_.emplace_back(nb::borrow<nb::object>(function), direction,
+                         nb::borrow<nb::object>(action));
+    owned_.push_back(function.ptr());
+    if (!action.is_none()) {
+      owned_.push_back(action.ptr());
+    }
+    compiled_.reset();
+  }
+
+  /// For Python's cycle collector (a load or an event that refers to its scene, as a closure
+  /// over it does, makes a cycle through C++ it cannot see otherwise): the Python objects the
+  /// record holds, one reference each (the compiled scene's copies share them).
+  int traverse(visitproc visit, void* arg) const {
+    for (PyObject* o : owned_) {
+      Py_VISIT(o);
+    }
+    return 0;
+  }
+  /// Drops them (the cycle collector breaking a cycle): the Python loads and the events go.
+  void clear() {
+    compiled_.reset();
+    events_.clear();
+    std::erase_if(loads_,
+                  [](const LoadRecord& l) { return std::holds_alternative<PythonLoad>(l.load); });
+    owned_.clear();
+  }
+
   const CompiledScene& compiled() const {
     if (bodies_.empty()) {
       throw std::invalid_argument("tumble.Scene: the scene has no body yet (Scene.add)");
     }
     if (!compiled_) {
-      compiled_ = build_scene(bodies_, loads_);
+      compiled_ = build_scene(bodies_, loads_, events_);
     }
     return *compiled_;
+  }
+
+  void check_not_running(const char* what) const {
+    if (running_ > 0) {
+      throw std::invalid_argument(std::string("tumble.Scene.") + what +
+                                  ": the scene cannot change while it integrates (from one of "
+                                  "its callbacks, or another thread)");
+    }
   }
 
   void check_body(int id, const char* what) const {
@@ -208,7 +277,10 @@ class PyScene {
  private:
   std::vector<BodyRecord> bodies_;
   std::vector<LoadRecord> loads_;
+  std::vector<PythonEvent> events_;
+  std::vector<PyObject*> owned_;  // the Python objects of loads_ and events_ (see traverse)
   mutable std::unique_ptr<CompiledScene> compiled_;  // a cache of the record, rebuilt on change
+  mutable int running_ = 0;  // integrations under way (Running), changed with the GIL held
 };
 
 RunOptions run_options(const std::string& method, double rtol, double atol, long max_steps,
@@ -257,6 +329,49 @@ constexpr const char* kEnsembleDoc =
     "(runs x times x ...), NaN for the rows of a run that failed, whose (run, message) is in "
     "errors; the other runs keep their results (tumble::Ensemble). The same results on any "
     "number of threads, to the bit. Options as for integrate().";
+
+constexpr const char* kAddEventDoc =
+    "Adds an event (tumble::Event): function(t, state) -> float, whose zero crossing in "
+    "`direction` (+1 rising, -1 falling, 0 both) calls action(t, state), which returns a new y "
+    "(size(), finite) or None (no change; action=None: none is called). state is a read-only "
+    "EventState (y, bases, and per body position, quaternion, velocity, omega; Scene's "
+    "observables take it). Every method locates the crossing between two steps (CVODE's "
+    "root finding; Illinois on the explicit step, to 1e-12 of the time scale), applies the "
+    "action there, re-centers the charts and evaluates the derivative again (the explicit "
+    "methods cut the step at the first crossing and find the others from there); "
+    "statistics.events counts the crossings, with or without an action; their times are not "
+    "recorded (keep t in the action). A step over two crossings of one function sees no sign "
+    "change: bound the steps with max_step where that can happen. With events, method='auto' "
+    "stays on Fehlberg 7(8) (no hand-over to Dormand-Prince's dense outputs). SLOW: Python is "
+    "called (taking the GIL) at every step and more while a crossing is located; the runs of "
+    "an ensemble take turns for it. What "
+    "the function raises stops the integration with tumble.IntegrationError (reason "
+    "'callback', the exception its __cause__), as a Python load's does; what the action "
+    "raises reaches the caller itself, unchanged, as tumble::Event's actions do (an ensemble "
+    "records its message as the run's error). ValueError for a function that is not callable, "
+    "a direction not in {-1, 0, 1}, an action that is neither None nor callable, or that "
+    "returns no y of size() finite entries.";
+
+int scene_traverse(PyObject* self, visitproc visit, void* arg) {
+  if (nb::inst_ready(self)) {
+    if (const int r = nb::inst_ptr<PyScene>(self)->traverse(visit, arg); r != 0) {
+      return r;
+    }
+  }
+  Py_VISIT(Py_TYPE(self));
+  return 0;
+}
+
+int scene_clear(PyObject* self) {
+  if (nb::inst_ready(self)) {
+    nb::inst_ptr<PyScene>(self)->clear();
+  }
+  return 0;
+}
+
+PyType_Slot kSceneSlots[] = {{Py_tp_traverse, reinterpret_cast<void*>(scene_traverse)},
+                             {Py_tp_clear, reinterpret_cast<void*>(scene_clear)},
+                             {0, nullptr}};
 
 /// A getter of an array member: the array itself (it owns its data through a capsule), which
 /// def_ro's reference_internal policy does not allow.
@@ -369,7 +484,8 @@ void bind_scene(nb::module_& m) {
       "A scene: bodies of one parameterization (each framed at its centroid, at an offset, or "
       "held at a fixed point) and the loads on them; one state, one right-hand side. Bodies are "
       "numbered from 0 in the order of add(). Built into a compiled C++ scene when first "
-      "needed (the parameterizations with compiled scenes: tumble.scene_parameterizations()).")
+      "needed (the parameterizations with compiled scenes: tumble.scene_parameterizations()).",
+      nb::type_slots(kSceneSlots))
       .def(nb::init<>())
       .def("add", &PyScene::add, "body"_a, "position"_a = nb::none(), "rotation"_a = nb::none(),
            "velocity"_a = nb::none(), "omega"_a = nb::none(),
@@ -429,16 +545,19 @@ void bind_scene(nb::module_& m) {
           "A linear spring-damper between body points of bodies a and b (m, body components of "
           "each).")
       .def(
-          "add_user_load",
-          [](PyScene& s, int body, nb::callable fn) {
-            s.add_load({PythonLoad(nb::borrow<nb::object>(fn)), body, -1});
-          },
+          "add_user_load", [](PyScene& s, int body, nb::callable fn) { s.add_user_load(body, fn); },
           "body"_a, "fn"_a,
           "A Python callable as a load: fn(t, position, rotation, velocity, omega) -> (force, "
           "moment), force in inertial components at the reference point (N), moment about it "
           "in body components (N m). SLOW: every right-hand side calls Python (taking the GIL), "
           "and a scene with one has no exact Jacobian (BDF uses difference quotients); an "
           "ensemble with one runs its loads one thread at a time.")
+      .def("add_event", &PyScene::add_event, "function"_a, "direction"_a = 0,
+           "action"_a = nb::none(),
+           nb::sig("def add_event(self, function: collections.abc.Callable[[float, EventState], "
+                   "float], direction: int = 0, action: collections.abc.Callable[[float, "
+                   "EventState], object] | None = None) -> None"),
+           kAddEventDoc)
       .def_prop_ro(
           "size", [](const PyScene& s) { return s.compiled().size(); }, "The length of y.")
       .def_prop_ro("body_count", [](const PyScene& s) { return s.bodies().size(); })
@@ -558,6 +677,7 @@ void bind_scene(nb::module_& m) {
             const RunOptions o = run_options(method, rtol, atol, max_steps, initial_step, max_step);
             RawTrajectory raw;
             {
+              const PyScene::Running running(s);
               const nb::gil_scoped_release release;
               raw = c.integrate(t0, s0, ts, o);
             }
@@ -592,6 +712,7 @@ void bind_scene(nb::module_& m) {
             const RunOptions o = run_options(method, rtol, atol, max_steps, initial_step, max_step);
             RawEnsemble raw;
             {
+              const PyScene::Running running(s);
               const nb::gil_scoped_release release;
               raw = c.ensemble(t0, y0, runs, ts, o, threads);
             }

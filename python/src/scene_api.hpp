@@ -1,6 +1,6 @@
 #pragma once
-// A scene for Python: what tumble.Scene records (bodies, loads) and the run-time interface of a
-// compiled C++ Scene built from that record.
+// A scene for Python: what tumble.Scene records (bodies, loads, events) and the run-time
+// interface of a compiled C++ Scene built from that record.
 //
 // The C++ Scene's type lists its body and load types at compile time. The module compiles, for
 // each parameterization of TUMBLE_PYTHON_SCENE_PARAMETERIZATIONS (python/CMakeLists.txt), two
@@ -9,6 +9,7 @@
 //     differentiable, so BDF gets the exact Jacobian;
 //   - the same plus a Python callable (PythonLoad), which only double can evaluate: CVODE's
 //     difference quotients, and the GIL taken at every call (slow).
+// Python events are tumble::Event (std::function) in either, so they choose no type.
 // tumble.Scene builds the C++ scene from its record when it is first needed, the type chosen by
 // the bodies' parameterization and whether a Python load was added; adding to the record after
 // that builds it again. Everything of a run (states, integrators) lives in the call, so a built
@@ -49,6 +50,33 @@ class PythonLoad {
   Wrench<double> call(double t, const KinematicsView<double>& k) const;
   // Shared, so that copies of the load need no GIL; the last owner takes the GIL to release it.
   std::shared_ptr<nanobind::object> fn_;
+};
+
+class CompiledScene;
+
+/// A Python event (tumble.Scene.add_event): function(t, state) -> float, whose zero crossing in
+/// `direction` (+1 rising, -1 falling, 0 both) calls action(t, state) -> new y or None (no
+/// action: null). The state is a tumble.EventState (events.cpp). Called with the GIL held (taken
+/// at every call); what the function raises is carried as a PythonLoadError (load_error.hpp),
+/// which the integrators make the cause of an IntegrationError, and what the action raises as
+/// one too, which they pass through unchanged (the Python exception itself reaches the caller).
+class PythonEvent {
+ public:
+  /// function: callable; action: callable or None; direction in {-1, 0, 1} (checked by the
+  /// caller). Needs the GIL.
+  PythonEvent(nanobind::object function, int direction, nanobind::object action);
+  [[nodiscard]] int direction() const { return direction_; }
+  [[nodiscard]] bool has_action() const { return static_cast<bool>(action_); }
+  /// g(t, state), finite, for the state of `scene`; any thread, without the GIL.
+  [[nodiscard]] double value(double t, const SceneStateView& s, const CompiledScene& scene) const;
+  /// Calls the action and puts the y it returned, if any, in s.y; any thread, without the GIL.
+  /// \throws std::invalid_argument when the action returned no y of size() finite entries.
+  void act(double t, SceneState& s, const CompiledScene& scene) const;
+
+ private:
+  // Shared, so that copies need no GIL (as PythonLoad's callable).
+  std::shared_ptr<nanobind::object> function_, action_;
+  int direction_ = 0;
 };
 
 /// One load of the record: on body a, or between a and b (SpringDamperBetween).
@@ -112,6 +140,7 @@ class CompiledScene {
  public:
   virtual ~CompiledScene() = default;
   [[nodiscard]] virtual int size() const = 0;
+  [[nodiscard]] virtual int body_count() const = 0;
   [[nodiscard]] virtual const SceneState& initial_state() const = 0;
   /// Where body `id`'s blocks start in y: {offset (r_oc or theta), rates (v or omega)}.
   [[nodiscard]] virtual std::pair<int, int> layout(int id) const = 0;
@@ -128,6 +157,8 @@ class CompiledScene {
   [[nodiscard]] virtual Eigen::Vector3d velocity(int id, const SceneState& s) const = 0;
   [[nodiscard]] virtual Eigen::Vector3d reaction_force(int id, const SceneState& s,
                                                        double t) const = 0;
+  /// Appends, per body, kRecordPerBody values (as RawTrajectory's bodies) of the state.
+  virtual void record(const SceneStateView& s, std::vector<double>& out) const = 0;
   /// y' = f(t, y) (scene/rhs.hpp).
   [[nodiscard]] virtual Eigen::VectorXd rhs(double t, const SceneState& s) const = 0;
 
@@ -144,9 +175,11 @@ class CompiledScene {
 
 /// The compiled scene for the record: \throws std::invalid_argument when the bodies'
 /// parameterization has no compiled scene (the message lists those that have) or the C++ scene
-/// rejects a body or a load.
+/// rejects a body or a load. The events do not choose the type (they are std::function in any
+/// C++ scene).
 std::unique_ptr<CompiledScene> build_scene(const std::vector<BodyRecord>& bodies,
-                                           const std::vector<LoadRecord>& loads);
+                                           const std::vector<LoadRecord>& loads,
+                                           const std::vector<PythonEvent>& events);
 
 /// The parameterizations with compiled scenes (scene_registry.cpp, generated).
 std::vector<std::string> scene_parameterizations();

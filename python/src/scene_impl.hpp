@@ -48,7 +48,8 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
   using Id = std::variant<BodyId<Centroid>, BodyId<Offset>, BodyId<Fixed>>;
 
  public:
-  SceneOf(const std::vector<BodyRecord>& bodies, const std::vector<LoadRecord>& loads) {
+  SceneOf(const std::vector<BodyRecord>& bodies, const std::vector<LoadRecord>& loads,
+          const std::vector<PythonEvent>& events) {
     for (const BodyRecord& r : bodies) {
       const void* native = r.body->rigid_body();
       switch (r.body->reference()) {
@@ -83,9 +84,21 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
           },
           l.load);
     }
+    // The events read the state through this scene (its per-body records): it is built in place
+    // and never moved (build_scene's unique_ptr), so `this` outlives them.
+    for (const PythonEvent& e : events) {
+      Event ev;
+      ev.function = [e, this](double t, const SceneStateView& s) { return e.value(t, s, *this); };
+      ev.direction = e.direction();
+      if (e.has_action()) {
+        ev.action = [e, this](double t, SceneState& s) { e.act(t, s, *this); };
+      }
+      scene_.add_event(std::move(ev));
+    }
   }
 
   [[nodiscard]] int size() const override { return scene_.size(); }
+  [[nodiscard]] int body_count() const override { return static_cast<int>(ids_.size()); }
   [[nodiscard]] const SceneState& initial_state() const override { return scene_.initial_state(); }
   [[nodiscard]] std::pair<int, int> layout(int id) const override {
     return std::visit(
@@ -210,8 +223,7 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
     return out;
   }
 
- private:
-  void record(const SceneState& s, std::vector<double>& out) const {
+  void record(const SceneStateView& s, std::vector<double>& out) const override {
     for (const Id& id : ids_) {
       std::visit(
           [&](auto b) {
@@ -229,6 +241,7 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
     }
   }
 
+ private:
   template <class O> static O shared(const RunOptions& o) {
     O opt;
     opt.rtol = o.rtol;

@@ -486,23 +486,33 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     t_ = t_new;
     on_step(t_old, t_new);
     bool event = false, recentered = false;
+    std::size_t fired = 0;
     if (!ev_old_.empty()) {
       events_at(t_new, x_, ev_new_);
-      event = locate_events(stepper, sys, t_old, t_new);
+      if ((event = locate_events(stepper, sys, t_old, t_new, fired))) {
+        events_at(t_, x_, ev_new_);  // after the action, before projection and re-centering
+      }
     }
     const bool changed = after_change(recentered) || event;
     deriv_valid_ = S::fsal && !changed;
     if (changed) {
       events_at(t_, x_, ev_old_);
+      // When projection or re-centering (rounding, drift) moved the fired event's function back
+      // across zero, the next step would find the same root again: it starts from zero instead.
+      if (event && (ev_new_[fired] < 0.0) != (ev_old_[fired] < 0.0)) {
+        ev_old_[fired] = 0.0;
+      }
     } else {
       std::swap(ev_old_, ev_new_);
     }
   }
 
   /// Finds the first event whose function changed sign over the last step (in its direction),
-  /// locates its root, cuts the step there (x_, t_) and applies its action. True if one was.
+  /// locates its root, cuts the step there (x_, t_) and applies its action. True if one was (its
+  /// index in `fired`).
   template <class S>
-  bool locate_events(S& stepper, const System<S>& sys, double t_old, double t_new) {
+  bool locate_events(S& stepper, const System<S>& sys, double t_old, double t_new,
+                     std::size_t& fired) {
     const auto& events = scene_->events();
     const auto state_at = [&](double t, State& out) {
       detail::guard_callbacks(kWho, "rhs()", t, t_, [&] {
@@ -522,6 +532,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     if (first == events.size()) {
       return false;
     }
+    fired = first;
     // The state just past the root (its function on the new side), where the action applies.
     if (t_first < t_new) {
       state_at(t_first, x_tmp_);
