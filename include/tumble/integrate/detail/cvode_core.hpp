@@ -375,6 +375,16 @@ template <class System> class CvodeCore {
         }
         continue;
       }
+      if (flag == CV_RTFUNC_FAIL) {
+        // CVODE returns from a failed root check without setting tret (SUNDIALS 6 and 7), so
+        // `reached` is still the last return: take the time it had stepped to, tn, and the state
+        // there, as on its other failures, so that time() is the time reached.
+        sun_real tn = t_;
+        if (CVodeGetCurrentTime(mem_.get(), &tn) == CV_SUCCESS && std::isfinite(tn) && tn != t_ &&
+            CVodeGetDky(mem_.get(), tn, 0, y_.get()) == CV_SUCCESS) {
+          t_ = tn;
+        }
+      }
       if (flag < 0) {
         throw failure(flag);
       }
