@@ -9,6 +9,7 @@
 //   problems.csv                  each problem's title and how its reference was obtained
 //   mechanism_<problem>.csv       study (e): every run of a mechanism (method, tolerance, both
 //                                 clocks, the problem's error, |C| at the end, counters)
+//   mechanisms.csv                each mechanism's title, error measure and reference
 // main/plot.py draws the PNG diagrams from them.
 
 #include <filesystem>
@@ -62,8 +63,16 @@ void write_mechanism_csv(const std::filesystem::path& path, const MechanismResul
       << x.run.jacobian_evals << ',' << x.run.error_test_failures << ','
       << x.run.convergence_failures << ',' << csv_quote(x.note) << '\n';
   }
-  // How the error was measured and against what, as the last two rows' message.
-  f << "# error: " << r.measure << "\n# reference: " << r.reference << "\n";
+}
+
+void write_mechanisms_csv(const std::filesystem::path& path,
+                          const std::vector<MechanismResult>& results) {
+  std::ofstream f(path);
+  f << "id,title,error_measure,reference\n";
+  for (const MechanismResult& r : results) {
+    f << csv_quote(r.id) << ',' << csv_quote(r.title) << ',' << csv_quote(r.measure) << ','
+      << csv_quote(r.reference) << '\n';
+  }
 }
 
 void write_scaling_csv(const std::filesystem::path& path, const std::vector<ScalingRow>& rows) {

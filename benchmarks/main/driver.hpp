@@ -147,6 +147,9 @@ void write_scaling_csv(const std::filesystem::path& path, const std::vector<Scal
 void write_ensemble_csv(const std::filesystem::path& path, const EnsembleResult& r);
 /// Every run of a mechanism of study (e): mechanism_<id>.csv.
 void write_mechanism_csv(const std::filesystem::path& path, const MechanismResult& r);
+/// Each mechanism's title, error measure and reference: mechanisms.csv.
+void write_mechanisms_csv(const std::filesystem::path& path,
+                          const std::vector<MechanismResult>& results);
 void write_problems_csv(const std::filesystem::path& path, const std::vector<Problem>& problems);
 /// Reads "benchmark,cpu_ns" (micro/summarize.py --csv); empty when the file is not there.
 MicroTimes read_micro_csv(const std::filesystem::path& path);

@@ -200,6 +200,7 @@ int run(const Options& o) {
 
   // (e) mechanisms
   std::string mechanism_tables;
+  std::vector<MechanismResult> mechanism_results;
   for (const MechanismProblem& m : mechanisms) {
     const int runs =
         static_cast<int>(mechanism_runs.methods.size() * mechanism_runs.tolerances.size());
@@ -212,8 +213,10 @@ int run(const Options& o) {
     progress.end(failures(failed));
     write_mechanism_csv(out / ("mechanism_" + m.id + ".csv"), result);
     mechanism_tables += mechanism_table(result);
+    mechanism_results.push_back(result);
   }
   if (!mechanisms.empty()) {
+    write_mechanisms_csv(out / "mechanisms.csv", mechanism_results);
     tables += "\n" + mechanism_table_header() + mechanism_tables + mechanism_table_footer(o.clock);
   }
 
@@ -239,7 +242,7 @@ int run(const Options& o) {
           "  *.csv                  every run and counter: work_precision_<problem>.csv, "
           "scaling.csv,\n"
           "                         ensemble.csv (ensemble_mpi_np*.txt: the MPI runs' output),\n"
-          "                         mechanism_<problem>.csv\n"
+          "                         mechanism_<problem>.csv, mechanisms.csv\n"
           "  *.png                  " +
           plots + "\n";
   if (o.micro) {
