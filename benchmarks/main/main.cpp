@@ -232,7 +232,8 @@ int run(const Options& o) {
       for (std::string line; std::getline(log, line);) {
         n += line.rfind("plot: ", 0) == 0 ? 1 : 0;
       }
-      plots = std::to_string(n) + " diagrams: work_precision_<problem>.png, scaling.png";
+      plots = std::to_string(n) +
+              " diagrams: work_precision_<problem>.png, scaling.png, mechanisms.png";
     }
   }
 
