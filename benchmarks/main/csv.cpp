@@ -7,6 +7,9 @@
 //                                 median and best time, runs/s), then its tolerance and errors,
 //                                 memory and allocations as named values
 //   problems.csv                  each problem's title and how its reference was obtained
+//   mechanism_<problem>.csv       study (e): every run of a mechanism (method, tolerance, both
+//                                 clocks, the problem's error, |C| at the end, counters)
+//   mechanisms.csv                each mechanism's title, error measure and reference
 // main/plot.py draws the PNG diagrams from them.
 
 #include <filesystem>
@@ -43,6 +46,32 @@ void write_runs_csv(const std::filesystem::path& path, const std::vector<Row>& r
       << ',' << r.run.rhs_evals << ',' << r.run.linear_rhs_evals << ',' << r.run.jacobian_evals
       << ',' << r.run.error_test_failures << ',' << r.run.convergence_failures << ','
       << r.run.reinits << ',' << r.run.chart_switches << ',' << num(r.run.constraint_drift) << '\n';
+  }
+}
+
+void write_mechanism_csv(const std::filesystem::path& path, const MechanismResult& r) {
+  std::ofstream f(path);
+  f << "problem,method,tol,rtol,atol,ok,error_message,time_s,time_median_s,wall_time_s,"
+       "cpu_time_s,reps,error,constraint_residual_end,steps,rhs_evals,jacobian_evals,"
+       "rejected_steps,convergence_failures,methods_chosen\n";
+  for (const MechanismRow& x : r.rows) {
+    f << csv_quote(r.id) << ',' << csv_quote(x.method) << ',' << num(x.tol) << ',' << num(x.tol)
+      << ',' << num(x.tol) << ',' << (x.run.ok ? 1 : 0) << ',' << csv_quote(x.run.error) << ','
+      << num(x.run.seconds) << ',' << num(x.run.seconds_median) << ',' << num(x.run.wall_seconds)
+      << ',' << num(x.run.cpu_seconds) << ',' << x.run.reps << ',' << num(x.error) << ','
+      << num(x.run.constraint_drift) << ',' << x.run.steps << ',' << x.run.rhs_evals << ','
+      << x.run.jacobian_evals << ',' << x.run.error_test_failures << ','
+      << x.run.convergence_failures << ',' << csv_quote(x.note) << '\n';
+  }
+}
+
+void write_mechanisms_csv(const std::filesystem::path& path,
+                          const std::vector<MechanismResult>& results) {
+  std::ofstream f(path);
+  f << "id,title,error_measure,reference\n";
+  for (const MechanismResult& r : results) {
+    f << csv_quote(r.id) << ',' << csv_quote(r.title) << ',' << csv_quote(r.measure) << ','
+      << csv_quote(r.reference) << '\n';
   }
 }
 

@@ -6,10 +6,12 @@
 //   report     the terminal tables                     (main/report.cpp)
 //   csv        the CSV files                           (main/csv.cpp)
 //   tools      tumble_micro, the plot script, tumble_bench_mpi (main/tools.cpp)
+// and study (e), mechanisms, declares its own (mechanisms/mechanisms.hpp);
 // and main/main.cpp runs the phases in order.
 
 #include <filesystem>
 #include <functional>
+#include <limits>
 #include <map>
 #include <optional>
 #include <set>
@@ -17,6 +19,7 @@
 #include <vector>
 
 #include "common/bench.hpp"
+#include "mechanisms/mechanisms.hpp"
 
 #ifndef TUMBLE_BENCH_DEFAULT_OUT
 #define TUMBLE_BENCH_DEFAULT_OUT "benchmark-results"
@@ -39,8 +42,9 @@ struct Options {
   std::vector<double> tolerances;    // empty: the default sweep
   bool work_precision = true;        // the work-precision sweep (b)
   bool scaling = true;
-  bool ensemble = true;  // the ensemble study (d), when tumble::ensemble was found
-  bool mpi = true;       // its runs over MPI ranks, when tumble_bench_mpi was built
+  bool ensemble = true;    // the ensemble study (d), when tumble::ensemble was found
+  bool mechanisms = true;  // the mechanisms' work precision (e)
+  bool mpi = true;         // its runs over MPI ranks, when tumble_bench_mpi was built
   bool plots = true;
   bool micro = true;
   bool exact_jacobian = true;  // tumble with BDF: the scene's Jacobian, or difference quotients
@@ -99,6 +103,21 @@ using MicroTimes = std::map<std::string, double>;
 std::string header_text(const Options& o, const std::filesystem::path& out, int runs);
 /// (a) ns per call of the core assembly per parameterization, with the baselines and peers.
 std::string micro_table(const MicroTimes& ns);
+/// A run's error (any measure) and time, one point of a work-precision sweep.
+struct Point {
+  double error;
+  double time;
+};
+/// The time a method needs to reach an error, read off its sweep (time_at).
+struct TimeAt {
+  double time = std::numeric_limits<double>::quiet_NaN();
+  bool bound = false;  ///< the cheapest run is already more accurate: its time, an upper bound
+};
+/// The time to reach error `target` read off a sweep's points: on the Pareto front (each kept
+/// run is faster than every more accurate one), log(time) interpolated linearly in log(error)
+/// between the two runs that bracket the target; nullopt when no run reaches it.
+std::optional<TimeAt> time_at(std::vector<Point> points, double target);
+
 /// (b) time to reach max attitude error 1e-3 / 1e-6 / 1e-9 / 1e-11 and the best error, per
 /// method.
 std::string problem_table(const Problem& p, const std::vector<Row>& rows);
@@ -106,6 +125,15 @@ std::string problem_table(const Problem& p, const std::vector<Row>& rows);
 std::string problem_table_header();
 /// The footer of the work-precision tables: how t(e) is read off a sweep.
 std::string problem_table_footer(TimeBase clock);
+/// (e) per mechanism and method, the time to reach an error of 1e-3, 1e-6, 1e-9 (time_at), the
+/// best error and the constraint residual |C| at the end of the most accurate run.
+std::string mechanism_table(const MechanismResult& r);
+/// The column headings and the footer of the mechanisms' tables.
+std::string mechanism_table_header();
+std::string mechanism_table_footer(TimeBase clock);
+/// The tolerance ladder and methods of study (e), from the options (--tolerances, --methods).
+MechanismPlan mechanism_plan(const Options& o);
+
 /// (c) cost per right-hand side and per BDF step against the number of bodies, with slopes.
 std::string scaling_table(const std::vector<ScalingRow>& rows);
 /// (d) runs per second of an ensemble against threads and processes, the per-run cost against
@@ -117,6 +145,11 @@ std::string ensemble_table(const EnsembleResult& r, const EnsemblePlan& plan);
 void write_runs_csv(const std::filesystem::path& path, const std::vector<Row>& rows);
 void write_scaling_csv(const std::filesystem::path& path, const std::vector<ScalingRow>& rows);
 void write_ensemble_csv(const std::filesystem::path& path, const EnsembleResult& r);
+/// Every run of a mechanism of study (e): mechanism_<id>.csv.
+void write_mechanism_csv(const std::filesystem::path& path, const MechanismResult& r);
+/// Each mechanism's title, error measure and reference: mechanisms.csv.
+void write_mechanisms_csv(const std::filesystem::path& path,
+                          const std::vector<MechanismResult>& results);
 void write_problems_csv(const std::filesystem::path& path, const std::vector<Problem>& problems);
 /// Reads "benchmark,cpu_ns" (micro/summarize.py --csv); empty when the file is not there.
 MicroTimes read_micro_csv(const std::filesystem::path& path);

@@ -8,7 +8,10 @@
 //   (c) the scaling study, a chain of N bodies (scaling/scaling.cpp);
 //   (d) the ensemble study, many runs of the tumbling body across threads and MPI processes
 //       (ensembles/ensemble.cpp; built when tumble::ensemble exists,
-//       TUMBLE_BENCH_HAVE_ENSEMBLE).
+//       TUMBLE_BENCH_HAVE_ENSEMBLE);
+//   (e) mechanisms: work precision of tumble's integrators on IFToMM problems (A01 the simple
+//       pendulum, A03 Andrews' mechanism, A04 Bricard's) against independent references
+//       (mechanisms/mechanisms.hpp; --no-mechanisms skips it).
 // It prints a header, one progress line per phase (stderr), then the tables
 // (main/report.cpp) and where the files are: CSVs (main/csv.cpp), PNG
 // diagrams and the raw micro-benchmark output (main/tools.cpp). `--help` for options.
@@ -106,11 +109,18 @@ int run(const Options& o) {
   const bool run_ensemble_study = false;
 #endif
 
+  std::vector<MechanismProblem> mechanisms = mechanism_problems();
+  std::erase_if(mechanisms, [&](const MechanismProblem& m) {
+    return !o.mechanisms || (!o.problems.empty() && !o.problems.contains(m.id));
+  });
+  const MechanismPlan mechanism_runs = mechanism_plan(o);
+
   const std::string header = header_text(o, out, static_cast<int>(jobs.size()));
   std::printf("%s\n", header.c_str());
   std::fflush(stdout);
   Progress progress((o.micro ? 1 : 0) + static_cast<int>(problems.size()) + (o.scaling ? 1 : 0) +
-                    (run_ensemble_study ? 1 : 0) + (o.plots ? 1 : 0));
+                    (run_ensemble_study ? 1 : 0) + static_cast<int>(mechanisms.size()) +
+                    (o.plots ? 1 : 0));
 
   // (a) per-call costs
   std::string tables;
@@ -188,6 +198,28 @@ int run(const Options& o) {
   }
 #endif
 
+  // (e) mechanisms
+  std::string mechanism_tables;
+  std::vector<MechanismResult> mechanism_results;
+  for (const MechanismProblem& m : mechanisms) {
+    const int runs =
+        static_cast<int>(mechanism_runs.methods.size() * mechanism_runs.tolerances.size());
+    progress.begin("mechanisms, " + m.id, runs);
+    const MechanismResult result = m.run(mechanism_runs, [&] { progress.step(); });
+    int failed = 0;
+    for (const MechanismRow& r : result.rows) {
+      failed += r.run.ok ? 0 : 1;
+    }
+    progress.end(failures(failed));
+    write_mechanism_csv(out / ("mechanism_" + m.id + ".csv"), result);
+    mechanism_tables += mechanism_table(result);
+    mechanism_results.push_back(result);
+  }
+  if (!mechanisms.empty()) {
+    write_mechanisms_csv(out / "mechanisms.csv", mechanism_results);
+    tables += "\n" + mechanism_table_header() + mechanism_tables + mechanism_table_footer(o.clock);
+  }
+
   std::string plots = "not drawn (--no-plots)";
   if (o.plots) {
     progress.begin("plots (matplotlib)", 0);
@@ -200,7 +232,8 @@ int run(const Options& o) {
       for (std::string line; std::getline(log, line);) {
         n += line.rfind("plot: ", 0) == 0 ? 1 : 0;
       }
-      plots = std::to_string(n) + " diagrams: work_precision_<problem>.png, scaling.png";
+      plots = std::to_string(n) +
+              " diagrams: work_precision_<problem>.png, scaling.png, mechanisms.png";
     }
   }
 
@@ -209,7 +242,8 @@ int run(const Options& o) {
   text += "/\n  summary.txt            this report\n"
           "  *.csv                  every run and counter: work_precision_<problem>.csv, "
           "scaling.csv,\n"
-          "                         ensemble.csv (ensemble_mpi_np*.txt: the MPI runs' output)\n"
+          "                         ensemble.csv (ensemble_mpi_np*.txt: the MPI runs' output),\n"
+          "                         mechanism_<problem>.csv, mechanisms.csv\n"
           "  *.png                  " +
           plots + "\n";
   if (o.micro) {

@@ -26,16 +26,19 @@ void usage() {
       "  --reps N          timed runs per configuration, the best is kept (default: 3)\n"
       "  --outputs N       output times per problem at which errors are measured (default: 200)\n"
       "  --problems LIST   comma-separated subset of: tumbling,minor_axis,major_axis,spinner,\n"
-      "                    gravity_offset,stiff_top,stiff_top_damped\n"
+      "                    gravity_offset,stiff_top,stiff_top_damped; the mechanisms a01,a03,a04\n"
       "  --methods LIST    only methods whose label contains one of these comma-separated\n"
       "                    strings (e.g. 'EulerParameters adams,hand-written,RK4')\n"
       "  --tolerances LIST comma-separated CVODE tolerances (default: 1e-3,1e-4,...,1e-13)\n"
       "  --no-scaling      skip the scaling study\n"
+      "  --no-mechanisms   skip the mechanisms' work precision (IFToMM a01, a03, a04; --problems "
+      "and\n"
+      "                    --methods filter it too: e.g. --problems a03 --methods BDF)\n"
       "  --no-ensemble     skip the ensemble study (runs per second against threads and MPI "
       "ranks)\n"
       "  --no-mpi          the ensemble study without its MPI runs (mpiexec)\n"
       "  --ensemble-only   only the ensemble study: no micro-benchmarks, work precision, scaling,\n"
-      "                    plots\n"
+      "                    mechanisms, plots\n"
       "  --clock wall|cpu  the clock of the report: wall (steady_clock, the default) or the\n"
       "                    thread's CPU time, which leaves out waiting for a core on a busy\n"
       "                    machine (the CSVs always have both)\n"
@@ -102,12 +105,14 @@ std::optional<Options> parse_options(int argc, char** argv) {
       }
     } else if (a == "--no-scaling") {
       o.scaling = false;
+    } else if (a == "--no-mechanisms") {
+      o.mechanisms = false;
     } else if (a == "--no-ensemble") {
       o.ensemble = false;
     } else if (a == "--no-mpi") {
       o.mpi = false;
     } else if (a == "--ensemble-only") {
-      o.micro = o.work_precision = o.scaling = o.plots = false;
+      o.micro = o.work_precision = o.scaling = o.plots = o.mechanisms = false;
       o.ensemble = true;
     } else if (a == "--clock") {
       const std::string c = value();

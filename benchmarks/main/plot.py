@@ -7,8 +7,11 @@ Reads, in RESULTS_DIR (written by tumble_bench, see benchmarks/main/csv.cpp):
   work_precision_<problem>.csv  one row per method x tolerance (or RK4 step size)
   problems.csv                  id, title, reference, reference_uncertainty_rad
   scaling.csv                   the chain of N bodies (optional)
+  mechanism_<problem>.csv       study (e), one row per method x tolerance (optional), with
+  mechanisms.csv                each mechanism's title and error measure
 and writes work_precision_<problem>.png (max attitude error on x, run time on y, log-log, one
-line per method; Adams on the left, BDF on the right, RK4 on both) and scaling.png.
+line per method; Adams on the left, BDF on the right, RK4 on both), scaling.png and
+mechanisms.png (one panel per mechanism: its error on x, run time on y, one line per method).
 Needs matplotlib only (python3-matplotlib on Debian).
 """
 
@@ -175,6 +178,42 @@ def plot_scaling(results):
     return out
 
 
+def plot_mechanisms(results):
+    ids = sorted(n[len("mechanism_"):-len(".csv")] for n in os.listdir(results)
+                 if n.startswith("mechanism_") and n.endswith(".csv"))
+    if not ids:
+        return None
+    info = {}
+    path = os.path.join(results, "mechanisms.csv")
+    if os.path.exists(path):
+        info = {r["id"]: r for r in read_csv(path)}
+    fig, axes = plt.subplots(1, len(ids), figsize=(5.2 * len(ids), 4.6), squeeze=False)
+    for ax, problem_id in zip(axes[0], ids):
+        lines = {}
+        for r in read_csv(os.path.join(results, f"mechanism_{problem_id}.csv")):
+            err, t = number(r["error"]), number(r["time_s"])
+            if r["ok"] == "1" and err > 0 and math.isfinite(err) and t > 0:
+                lines.setdefault(r["method"], []).append((err, t))
+        for index, (method, pts) in enumerate(lines.items()):
+            ax.loglog([p[0] for p in pts], [p[1] for p in pts], **style(method, "tumble", index))
+        for e in TARGET_ERRORS:
+            ax.axvline(e, color="lightgray", linewidth=0.8, zorder=0)
+        ax.invert_xaxis()
+        row = info.get(problem_id, {})
+        ax.set_title(problem_id + ": " + row.get("title", "").split(":")[0], fontsize=9)
+        ax.set_xlabel(row.get("error_measure", "error"), fontsize=7)
+        ax.set_ylabel("run time (s)")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=7)
+    fig.suptitle("(e) mechanisms: work precision of tumble's integrators (peers not run)",
+                 fontsize=10)
+    fig.tight_layout()
+    out = os.path.join(results, "mechanisms.png")
+    fig.savefig(out, dpi=110)
+    plt.close(fig)
+    return out
+
+
 def main():
     if len(sys.argv) != 2:
         print(__doc__)
@@ -191,9 +230,10 @@ def main():
             out = plot_problem(results, problem_id, info.get(problem_id, {}))
             if out:
                 written.append(out)
-    out = plot_scaling(results)
-    if out:
-        written.append(out)
+    for plot in (plot_scaling, plot_mechanisms):
+        out = plot(results)
+        if out:
+            written.append(out)
     for w in written:
         print(f"plot: {w}")
     return 0

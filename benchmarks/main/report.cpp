@@ -8,7 +8,11 @@
 //   (c)         the cost of a right-hand side and of a BDF step against the number of bodies, with
 //               the log-log slope;
 //   (d)         runs per second of an ensemble against threads and MPI processes, the per-run cost
-//               against serial loops, memory and allocations per run, against their targets.
+//               against serial loops, memory and allocations per run, against their targets;
+//   (e)         per mechanism (IFToMM A01, A03, A04) and tumble integrator, the time to reach an
+//   error of
+//               1e-3, 1e-6, 1e-9 in the problem's own measure (time_at, as in (b)), the best error
+//               and the constraint residual |C| at the end of the most accurate run.
 
 #include <algorithm>
 #include <cmath>
@@ -86,22 +90,9 @@ std::string wrap(const std::string& text, const std::string& indent) {
   return out + line + "\n";
 }
 
-// ---- (b): time to reach an error, read off a sweep ----------------------------------------------
+}  // namespace
 
-struct Point {
-  double error;
-  double time;
-};
-
-/// The time a method needs to reach max attitude error `target`, read off its runs: keep the
-/// Pareto front (each kept run is faster than every more accurate one), then interpolate
-/// log(time) linearly in log(error) between the two front runs that bracket the target. When
-/// even the cheapest run is more accurate than the target, its time (an upper bound, `bound`);
-/// when no run reaches the target, nullopt.
-struct TimeAt {
-  double time = std::numeric_limits<double>::quiet_NaN();
-  bool bound = false;
-};
+// ---- (b), (e): time to reach an error, read off a sweep -----------------------------------------
 
 std::optional<TimeAt> time_at(std::vector<Point> points, double target) {
   std::erase_if(points, [](const Point& p) {
@@ -131,6 +122,8 @@ std::optional<TimeAt> time_at(std::vector<Point> points, double target) {
   }
   return std::nullopt;
 }
+
+namespace {
 
 /// The row label of a method, without its scheme: tumble's rows are named by parameterization.
 std::string method_label(const Job& j) {
@@ -178,14 +171,16 @@ std::string header_text(const Options& o, const std::filesystem::path& out, int 
   // scaling, 10 s (quick) or 30 s (--full) of ensembles, 5 s of plots.
   const double estimate = 0.02 * runs + (o.micro ? 10.0 : 0.0) +
                           (o.scaling ? (o.full ? 40.0 : 5.0) : 0.0) +
-                          (o.ensemble ? (o.full ? 30.0 : 10.0) : 0.0) + (o.plots ? 5.0 : 0.0);
+                          (o.ensemble ? (o.full ? 30.0 : 10.0) : 0.0) +
+                          (o.mechanisms ? (o.full ? 15.0 : 8.0) : 0.0) + (o.plots ? 5.0 : 0.0);
   std::ostringstream s;
   s << "tumble_bench (" << (o.full ? "full" : "quick")
     << " run): what tumble's rigid-body dynamics cost and the accuracy they buy\n"
     << "  measures  (a) ns per call of the core assembly, (b) run time to reach an attitude error "
        "on\n"
     << "            problems with exact answers, (c) cost per step against the number of bodies,\n"
-    << "            (d) runs per second of an ensemble against threads and MPI processes\n"
+    << "            (d) runs per second of an ensemble against threads and MPI processes,\n"
+    << "            (e) run time to reach an error on IFToMM mechanisms (A01, A03, A04)\n"
     << "  machine   " << first_line("/proc/cpuinfo", "model name") << ", "
     << std::thread::hardware_concurrency() << " hardware threads, load " << load << "\n"
     << "  build     " << compiler() << ", " << TUMBLE_BENCH_BUILD_TYPE << " ("
@@ -394,6 +389,79 @@ std::string problem_table_footer(TimeBase clock) {
          "   [p; w] = [p; omega], [r_g; p; v_g; omega] where the problem has translation or loads; "
          "\n"
          "   every run: work_precision_<problem>.csv)\n";
+}
+
+namespace {
+
+const std::vector<double> kMechanismErrors = {1e-3, 1e-6, 1e-9};
+
+}  // namespace
+
+std::string mechanism_table_header() {
+  std::string s = "(e) mechanisms: work precision on IFToMM problems, tumble's integrators\n  ";
+  s += pad("method", 26);
+  for (const char* e : {"1e-3", "1e-6", "1e-9", "best", "|C| end", "runs"}) {
+    s += lpad(e, 9);
+  }
+  return s + "\n";
+}
+
+std::string mechanism_table(const MechanismResult& r) {
+  std::vector<std::string> labels;
+  std::map<std::string, std::vector<const MechanismRow*>> by_method;
+  for (const MechanismRow& row : r.rows) {
+    if (!by_method.contains(row.method)) {
+      labels.push_back(row.method);
+    }
+    by_method[row.method].push_back(&row);
+  }
+  std::ostringstream s;
+  s << wrap(r.id + ": " + r.title, "  ");
+  s << wrap("  error: " + r.measure, "    ");
+  s << wrap("  reference: " + r.reference, "    ");
+  for (const std::string& label : labels) {
+    std::vector<Point> points;
+    const MechanismRow* best = nullptr;
+    int ok = 0;
+    for (const MechanismRow* row : by_method[label]) {
+      if (!row->run.ok || !std::isfinite(row->error)) {
+        continue;
+      }
+      ++ok;
+      points.push_back({row->error, row->run.seconds});
+      if (best == nullptr || row->error < best->error) {
+        best = row;
+      }
+    }
+    std::string line = "  " + pad(label, 26);
+    for (const double e : kMechanismErrors) {
+      const auto t = time_at(points, e);
+      std::string cell = t && t->bound ? "<" : "";
+      cell += t ? duration(t->time, true) : std::string("-");
+      line += lpad(cell, 9);
+    }
+    line += lpad(best ? sci(best->error) : std::string("failed"), 9);
+    line += lpad(best ? sci(best->run.constraint_drift) : std::string("-"), 9);
+    line += lpad(std::to_string(ok) + "/" + std::to_string(by_method[label].size()), 9);
+    s << line << "\n";
+    if (best != nullptr && !best->note.empty()) {
+      s << wrap("    (at tol " + sci(best->tol) + ": " + best->note + ")", "     ");
+    }
+  }
+  return s.str();
+}
+
+std::string mechanism_table_footer(TimeBase clock) {
+  return std::string("  (") + (clock == TimeBase::wall ? "wall" : "CPU") +
+         " time to reach the error, read off each method's tolerance ladder as in (b); '<': the\n"
+         "   cheapest run is more accurate; '-': not reached; best: the smallest error, |C| end: "
+         "max |C| at\n"
+         "   the end of that run; runs: those that finished of the ladder (a method is not run at "
+         "tighter\n"
+         "   tolerances after it failed). Peers (MuJoCo, Exudyn) are not run on these problems "
+         "yet. "
+         "Every\n"
+         "   run: mechanism_<problem>.csv)\n";
 }
 
 std::string scaling_table(const std::vector<ScalingRow>& rows) {

@@ -41,6 +41,7 @@ add_executable(tumble_bench
   peers/mujoco_work_precision.cpp      # method: MuJoCo's RK4 (when installed)
   work_precision/sweep.cpp       # which runs to make, and making them
   scaling/scaling.cpp     # the scaling study (chain of N bodies)
+  mechanisms/study.cpp    # the mechanisms' study (e): its problems, methods, tolerances
   main/report.cpp      # the terminal tables
   main/csv.cpp         # the CSV files
   main/tools.cpp       # the programs it runs: tumble_micro, the plot script
@@ -70,8 +71,13 @@ target_link_libraries(tumble_bench PRIVATE ${_tumble_arkode} Boost::headers)
 # tumble's own explicit integrator (OdeintIntegrator) on tumble's scenes, when the library
 # provides it (tumble::odeint: Boost >= 1.74).
 if(TARGET tumble::odeint)
+  # The mechanisms' study (e) runs the front door and OdeintIntegrator beside CVODE's BDF: one
+  # translation unit per problem, each instantiating its scene type (compiler memory).
   target_sources(tumble_bench PRIVATE
-    work_precision/tumble_d.cpp)  # method: tumble's scenes under OdeintIntegrator
+    work_precision/tumble_d.cpp   # method: tumble's scenes under OdeintIntegrator
+    mechanisms/pendulum.cpp       # mechanism: IFToMM A01, the simple pendulum
+    mechanisms/andrews.cpp        # mechanism: IFToMM A03, Andrews' squeezing mechanism
+    mechanisms/bricard.cpp)       # mechanism: IFToMM A04, Bricard's mechanism
   target_link_libraries(tumble_bench PRIVATE tumble::odeint)
   target_compile_definitions(tumble_bench PRIVATE TUMBLE_BENCH_HAVE_TUMBLE_ODEINT=1)
 else()

@@ -1,6 +1,6 @@
 // tumble_bench: the sweep. Which runs the work-precision study makes (every problem x method x
 // setting), how one is made and measured, the stiff top's reference integration, and the sizes
-// of the scaling and ensemble studies.
+// of the scaling, ensemble and mechanism studies.
 //
 // The methods are the entries of the list in work_precision/methods.cpp (tumble per
 // parameterization, the hand-written floors, the peers, RK4). Adaptive methods sweep
@@ -123,6 +123,26 @@ void make_stiff_reference(Problem& p) {
   p.reference = stiff_top_reference(p, substeps, p.reference_uncertainty);
   p.reference_note = "long-double RK4 (tumble's equations, h = " + sci(p.times.front() / substeps) +
                      " s), error estimate " + sci(p.reference_uncertainty) + " rad";
+}
+
+MechanismPlan mechanism_plan(const Options& o) {
+  MechanismPlan plan;
+  plan.tolerances = o.tolerances.empty() ? mechanism_tolerances(o.full) : o.tolerances;
+  for (const MechanismMethod m :
+       {MechanismMethod::front_door, MechanismMethod::odeint_f78, MechanismMethod::cvode_bdf}) {
+    const std::string label = mechanism_method_label(m);
+    const bool wanted =
+        o.methods.empty() || std::any_of(o.methods.begin(), o.methods.end(), [&](const auto& s) {
+          return label.find(s) != std::string::npos;
+        });
+    if (wanted) {
+      plan.methods.push_back(m);
+    }
+  }
+  // Best of --reps, but a single run once one takes 0.1 s (far above the clock's resolution):
+  // the tight tolerances of BDF are long, and the study should add seconds, not minutes.
+  plan.timing = Timing{.reps = o.reps, .base = o.clock, .slow_run = 0.1};
+  return plan;
 }
 
 ScalingPlan scaling_plan(const Options& o) {

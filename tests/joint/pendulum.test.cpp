@@ -5,6 +5,8 @@
 // Compiled in slices, one parameterization each (tests/CMakeLists.txt); the hinge force is in
 // slice 0.
 
+#include "support/pendulum.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <tuple>
@@ -14,7 +16,6 @@
 
 #include "support/catch.hpp"
 #include "support/parameterizations.hpp"
-#include "support/torque_free.hpp"
 #include "tumble/integrate.hpp"
 
 namespace {
@@ -39,14 +40,8 @@ MassProperties<> rod(double m, double l) {
       m, Vector3d(m * (l * l + s * s) / 12, m * (l * l + s * s) / 12, m * s * s / 6).asDiagonal());
 }
 
-/// The physical pendulum's angle by its closed form: theta(t) = 2 asin(k sn(K - w0 t | k^2)),
-/// k = sin(theta0 / 2), w0^2 = m g d / I_o (released at rest from theta0).
-double pendulum_angle(double theta0, double w0, double t) {
-  const double k = std::sin(0.5 * theta0);
-  const double kk = std::comp_ellint_1(k);
-  const auto e = tumble::test::jacobi_sn_cn_dn(kk - w0 * t, k * k);
-  return 2.0 * std::asin(k * e.sn);
-}
+/// The physical pendulum's angle by its closed form (support/pendulum.hpp), w0^2 = m g d / I_o.
+using tumble::test::pendulum_angle;
 
 /// The pendulum: a rod of length l hinged at its top end to the ground at the origin, axis y,
 /// released at rest from theta0 (the angle about y from hanging straight down).

@@ -1,0 +1,44 @@
+// tumble_bench, study (e): the list of its problems and methods, and its default tolerance
+// ladder. The problems' runs are in mechanisms/<problem>.cpp, one translation unit each, built
+// when tumble::odeint exists (TUMBLE_BENCH_HAVE_TUMBLE_ODEINT: the front door and
+// OdeintIntegrator need it).
+
+#include <vector>
+
+#include "mechanisms/mechanisms.hpp"
+
+namespace tumble::bench {
+
+const char* mechanism_method_label(MechanismMethod m) {
+  switch (m) {
+    case MechanismMethod::front_door:
+      return "tumble::integrate (auto)";
+    case MechanismMethod::odeint_f78:
+      return "OdeintIntegrator F78";
+    case MechanismMethod::cvode_bdf:
+      return "SceneIntegrator BDF";
+  }
+  return "?";
+}
+
+std::vector<MechanismProblem> mechanism_problems() {
+  // HOOK for peers: a peer's runs of the same problem (MuJoCo, Exudyn) would append rows to the
+  // MechanismResult with the peer's name as `method`, the same tolerances (or its step sizes)
+  // and output times and the same error measure; the table and the CSV take them as they are.
+  // None is run yet.
+#if TUMBLE_BENCH_HAVE_TUMBLE_ODEINT
+  return {{"a01", &run_mechanism_a01}, {"a03", &run_mechanism_a03}, {"a04", &run_mechanism_a04}};
+#else
+  return {};  // the problems' runs need tumble::odeint (Boost >= 1.74): not built
+#endif
+}
+
+std::vector<double> mechanism_tolerances(bool full) {
+  if (full) {
+    return {1e-4, 3e-5, 1e-5,  3e-6,  1e-6,  3e-7,  1e-7,  3e-8, 1e-8,
+            3e-9, 1e-9, 3e-10, 1e-10, 3e-11, 1e-11, 3e-12, 1e-12};
+  }
+  return {1e-4, 1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10, 1e-11, 1e-12};
+}
+
+}  // namespace tumble::bench
