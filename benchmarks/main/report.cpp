@@ -228,26 +228,23 @@ std::string chain_table(const MicroTimes& ns) {
     s << lpad(c.second, 12) << lpad("per body", 12);
   }
   s << "\n";
+  std::vector<std::vector<std::pair<double, double>>> large(cols.size());  // (n, ns), n >= 100
   for (int n : sizes) {
     s << "  " << lpad(std::to_string(n), 6);
-    for (const auto& c : cols) {
-      const auto it = ns.find(c.first + "/" + std::to_string(n));
+    for (std::size_t c = 0; c < cols.size(); ++c) {
+      const auto it = ns.find(cols[c].first + "/" + std::to_string(n));
       const bool have = it != ns.end();
       s << lpad(have ? duration(1e-9 * it->second) : "-", 12)
         << lpad(have ? duration(1e-9 * it->second / n) : "-", 12);
+      if (have && n >= 100) {
+        large[c].emplace_back(n, it->second);
+      }
     }
     s << "\n";
   }
   s << "  " << lpad("slope", 6);
-  for (const auto& c : cols) {
-    std::vector<std::pair<double, double>> large;
-    for (int n : sizes) {
-      const auto it = ns.find(c.first + "/" + std::to_string(n));
-      if (n >= 100 && it != ns.end()) {
-        large.emplace_back(n, it->second);
-      }
-    }
-    const double slope = large.size() >= 2 ? loglog_slope(large) : std::nan("");
+  for (const auto& points : large) {
+    const double slope = loglog_slope(points);  // NaN for fewer than two sizes
     s << lpad(std::isfinite(slope) ? fmt("%.2f", slope) : "-", 24);
   }
   s << "\n  (slope: log-log fit of the cost per call against n over n >= 100; 1 = linear)\n";

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -61,16 +62,9 @@ MechanismResult run_mechanism_a04(const MechanismPlan& plan, const std::function
   }
 
   const bricard::Bricard<> six;
-  std::vector<Vector3d> p3(times.size(), Vector3d::Constant(std::nan("")));
-  auto record = [&](std::size_t k, const SceneState& s) { p3[k] = six.p3(s); };
-  auto measure = [&] {
-    double err = 0;
-    for (std::size_t k = 0; k < times.size(); ++k) {
-      err = std::max(err, (p3[k] - reference[k]).norm());
-    }
-    std::fill(p3.begin(), p3.end(), Vector3d::Constant(std::nan("")));
-    return err;
-  };
+  PointTrackError p3(std::move(reference));
+  auto record = [&](std::size_t k, const SceneState& s) { p3.record(k, six.p3(s)); };
+  auto measure = [&] { return p3.measure(); };
   MechanismResult r;
   r.id = "a04";
   r.title = "IFToMM A04, Bricard's mechanism: 5 rods, 6 hinges, 30 rows of rank 29 (redundant), "

@@ -10,11 +10,11 @@
 
 #include "support/pendulum.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <functional>
 #include <numbers>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -38,23 +38,18 @@ MechanismResult run_mechanism_a01(const MechanismPlan& plan, const std::function
   scene.add_joint(ball, ground, Distance(Vector3d::Zero(), Vector3d::Zero(), 1.0));
 
   std::vector<double> times;
-  std::vector<Vector3d> exact, bob;
+  std::vector<Vector3d> exact;
   const double theta0 = std::numbers::pi / 2, w0 = std::sqrt(g);
   for (int i = 1; i <= 40; ++i) {
     times.push_back(0.25 * i);
     const double theta = test::pendulum_angle(theta0, w0, times.back());
     exact.emplace_back(std::sin(theta), -std::cos(theta), 0.0);
   }
-  bob.resize(times.size(), Vector3d::Constant(std::nan("")));
-  auto record = [&](std::size_t k, const SceneState& s) { bob[k] = position(scene, ball, s); };
-  auto measure = [&] {
-    double err = 0;
-    for (std::size_t k = 0; k < times.size(); ++k) {
-      err = std::max(err, (bob[k] - exact[k]).norm());  // NaN (an output missed) stays out
-    }
-    std::fill(bob.begin(), bob.end(), Vector3d::Constant(std::nan("")));
-    return err;
+  PointTrackError bob(std::move(exact));
+  auto record = [&](std::size_t k, const SceneState& s) {
+    bob.record(k, position(scene, ball, s));
   };
+  auto measure = [&] { return bob.measure(); };
   MechanismResult r;
   r.id = "a01";
   r.title = "IFToMM A01, the simple pendulum: a 1 kg point mass on a massless 1 m bar (Distance "
