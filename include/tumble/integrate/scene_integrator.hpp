@@ -230,8 +230,9 @@ template <class SceneT> class SceneSystem {
   }
 
   /// The Euler parameters' projection, then a mechanism's (scene/assembly.hpp: Newton on the
-  /// positions, the velocities exactly). The error estimate is projected for the quaternions
-  /// only: left whole in the joints' normal directions, it is the larger (safe) estimate.
+  /// positions, the velocities exactly). The error estimate is projected for the quaternions of
+  /// the generalized form only (scene/projection.hpp): left whole in the joints' normal
+  /// directions, it is the larger (safe) estimate.
   void project(double /*t*/, ConstVectorMap y, VectorMap corr, double /*eps*/, VectorMap err) {
     tumble::project(*scene_, y, corr, err);
     if constexpr (SceneT::has_joints) {
