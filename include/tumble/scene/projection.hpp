@@ -12,8 +12,8 @@
 // major axis (8.5 s, rtol = atol = 1e-10) took 15815 steps to an attitude error of 1.7e-6 rad,
 // against 300 steps and 5.7e-9 rad with the normal part kept (tests/integrate/
 // quasi_velocities.test.cpp). In the generalized form, where the normal error of p and pdot also
-// carries the drift of p.pdot, projecting it measured as good or better (the same spinner: 298
-// against 318 steps; the tumbling body at 1e-10: 5e-5 against 2e-4 rad).
+// carries the drift of p.pdot, projecting it measured as good or better (that spinner from the
+// identity: 298 against 318 steps; the tumbling body at 1e-10: 5e-5 against 2e-4 rad).
 
 #include <type_traits>
 
