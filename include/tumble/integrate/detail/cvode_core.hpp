@@ -173,7 +173,7 @@ template <class System> class CvodeCore {
   }
 
  private:
-  /// Steps per call of CVode() when the options set no per-call limit (see call_cvode()).
+  /// Steps per call of CVode() at most (see call_cvode()).
   static constexpr long kStepChunk = 10000;
 
   // ---- views of SUNDIALS vectors -----------------------------------------------------------
@@ -229,8 +229,8 @@ template <class System> class CvodeCore {
     if (options_.max_order > 0) {
       check(CVodeSetMaxOrd(mem, options_.max_order), "CVodeSetMaxOrd");
     }
-    const long limit = options_.max_steps;
-    check(CVodeSetMaxNumSteps(mem, limit > 0 ? limit : kStepChunk), "CVodeSetMaxNumSteps");
+    chunk_ = options_.max_steps > 0 ? std::min(kStepChunk, options_.max_steps) : kStepChunk;
+    check(CVodeSetMaxNumSteps(mem, chunk_), "CVodeSetMaxNumSteps");
     if (options_.initial_step > 0.0) {
       check(CVodeSetInitStep(mem, options_.initial_step), "CVodeSetInitStep");
     }
@@ -347,17 +347,26 @@ template <class System> class CvodeCore {
 
   /// One call of CVode(); throws CvodeError on a failure flag.
   ///
-  /// Without a per-call step limit, CVODE still runs with one, kStepChunk, and is called again
-  /// when it returns CV_TOO_MUCH_WORK (its state is intact then; the next call continues the
-  /// same step sequence). Disabling CVODE's limit (CVodeSetMaxNumSteps < 0) would let it loop
-  /// for ever when its step falls to the rounding level of t (t + h == t: CVODE only warns); the
-  /// chunks let tumble see that and stop with an CvodeError instead. Each chunk ends with
-  /// a CVODE error message, captured; SUNDIALS 7 formats it on the heap, so a call of more than
-  /// kStepChunk steps is the one place where advance() may allocate there.
+  /// CVODE runs in chunks of at most kStepChunk steps (CVodeSetMaxNumSteps) and is called again
+  /// when a chunk ends with CV_TOO_MUCH_WORK (its state is intact then; the next call continues
+  /// the same step sequence), until the options' per-call budget max_steps is spent (0: none).
+  /// Disabling CVODE's limit (CVodeSetMaxNumSteps < 0) would let it loop for ever when its step
+  /// falls to the rounding level of t (t + h == t: CVODE only warns), and a large budget would
+  /// be spent in place (10^6 steps at a load's wall: 6 s); the chunks let tumble see that and
+  /// stop with a CvodeError instead. Each chunk ends with a CVODE error message, captured;
+  /// SUNDIALS 7 formats it on the heap, so a call of more than kStepChunk steps is the one place
+  /// where advance() may allocate there.
   int call_cvode(double tout, int task) {
     report_.clear();
+    const long budget = options_.max_steps;
+    long taken = 0;  // steps of this call
     for (;;) {
       errors_.clear();
+      const long chunk = budget > 0 ? std::min(kStepChunk, budget - taken) : kStepChunk;
+      if (chunk != chunk_) {
+        check(CVodeSetMaxNumSteps(mem_.get(), chunk), "CVodeSetMaxNumSteps");
+        chunk_ = chunk;
+      }
       const double before = t_;
       sun_real reached = t_;
       const int flag = CVode(mem_.get(), tout, y_.get(), &reached, task);
@@ -365,15 +374,18 @@ template <class System> class CvodeCore {
       if (std::isfinite(reached)) {
         t_ = reached;  // on failure CVODE returns the last time reached and the state there
       }
-      if (flag == CV_TOO_MUCH_WORK && options_.max_steps == 0) {
-        // kStepChunk steps moved t by at most a few units in its last place each: CVODE's step
-        // is at the rounding level of t and the integration cannot reach tout.
+      if (flag == CV_TOO_MUCH_WORK) {
+        // `chunk` steps moved t by at most a few units in its last place each: CVODE's step is at
+        // the rounding level of t and the integration cannot reach tout.
         const double rounding =
             4.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(before), std::abs(t_));
-        if (std::abs(t_ - before) <= static_cast<double>(kStepChunk) * rounding) {
-          throw stalled(before);
+        if (std::abs(t_ - before) <= static_cast<double>(chunk) * rounding) {
+          throw stalled(before, chunk);
         }
-        continue;
+        taken += chunk;
+        if (budget == 0 || taken < budget) {
+          continue;
+        }
       }
       if (flag == CV_RTFUNC_FAIL) {
         // CVODE returns from a failed root check without setting tret (SUNDIALS 6 and 7), so
@@ -436,11 +448,11 @@ template <class System> class CvodeCore {
 
   CvodeError failure(int flag) const { return cvode_failure(flag, t_, options_, report_, errors_); }
 
-  /// The integration made no progress in time over kStepChunk steps (see call_cvode()).
-  CvodeError stalled(double before) const {
+  /// The integration made no progress in time over `steps` steps (see call_cvode()).
+  CvodeError stalled(double before, long steps) const {
     sun_real h = 0.0;
     (void)CVodeGetCurrentStep(mem_.get(), &h);
-    return stalled_failure(before, t_, h, kStepChunk, report_);
+    return stalled_failure(before, t_, h, steps, report_);
   }
 
   /// Adds CVODE's counters of the current segment (since the last (re)initialization) to s.
@@ -584,6 +596,7 @@ template <class System> class CvodeCore {
   long roots_found_ = 0;
   long reinits_ = 0;
   bool segment_started_ = false;
+  long chunk_ = 0;  ///< CVODE's current step limit per CVode() call (call_cvode())
   ContextHandle context_;
   NVectorHandle y_;
   NVectorHandle atol_;

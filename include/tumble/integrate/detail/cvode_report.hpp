@@ -108,8 +108,8 @@ inline CvodeError underflow_failure(double tout, double tn, double h, const Call
   return stall_error(std::move(what), tn, r);
 }
 
-/// The CvodeError (CV_TOO_MUCH_WORK) for an integration without a per-call step limit
-/// whose last `steps` steps, of size about h, moved t only from `before` to t.
+/// The CvodeError (CV_TOO_MUCH_WORK) for an integration whose last `steps` steps, of size about
+/// h, moved t only from `before` to t.
 inline CvodeError stalled_failure(double before, double t, double h, long steps,
                                   const CallbackReport& r) {
   std::string what =
