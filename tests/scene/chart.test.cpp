@@ -224,6 +224,49 @@ TEMPLATE_LIST_TEST_CASE("leaving a chart keeps R and omega", "[scene][chart]",
   }
 }
 
+// tumble::quaternion() reads the attitude from the parameters (and the chart base), not through
+// R: its rotation matrix must be R, from tumble::rotation(), with w >= 0 and |q| = 1, on a chart
+// without a base and after a switch that gave the chart one.
+TEMPLATE_LIST_TEST_CASE("quaternion(): R's unit quaternion with w >= 0, chart base included",
+                        "[scene][chart]", AllParameterizations) {
+  using P = TestType;
+  using Body = tumble::RigidBody<P>;
+  tumble::Scene<tumble::Bodies<Body>> scene;
+  const auto mp = tumble::MassProperties<double>::about_centroid(
+      2.0, Eigen::Vector3d(0.5, 0.7, 0.9).asDiagonal());
+  // A rotation of about 3 rad: w of its quaternion is about 0.07, and one sign is w < 0.
+  const Matrix3d start = Eigen::AngleAxisd(3.0, Vector3d(2, -1, 2).normalized()).toRotationMatrix();
+  const auto h = scene.add(Body(mp), {.rotation = start});
+  tumble::SceneState y = scene.initial_state();
+  const auto check = [&](const char* where) {
+    INFO(where);
+    const Eigen::Quaterniond q = tumble::quaternion(scene, h, y);
+    CHECK(q.w() >= 0.0);
+    CHECK(std::abs(q.norm() - 1.0) < 4e-16);
+    CHECK(max_abs(q.toRotationMatrix() - tumble::rotation(scene, h, y)) < 1e-14);
+  };
+  check("the initial state");
+  CHECK(max_abs(tumble::rotation(scene, h, y) - start) < 1e-14);
+  if constexpr (Chart<P>::has_singularity) {
+    double distance = 0.0;
+    y.y.segment<3>(3) = near_singular<P>(distance);
+    CHECK(tumble::recenter_charts(scene, y) == 1);
+    if constexpr (!Chart<P>::uses_shadow_set) {
+      REQUIRE(!y.base[0].isIdentity(0.0));
+    }
+    check("after a switch");
+  } else {
+    // |p| off 1 (between projections): q is p / |p|, a unit quaternion (R(p) is |p|^2 times a
+    // rotation there).
+    const Eigen::Vector4d p = y.y.segment<4>(3);
+    y.y.segment<4>(3) *= 1.0 + 1e-9;
+    const Eigen::Quaterniond q = tumble::quaternion(scene, h, y);
+    CHECK(std::abs(q.norm() - 1.0) < 4e-16);
+    const double sign = p(0) >= 0 ? 1.0 : -1.0;
+    CHECK((Eigen::Vector4d(q.w(), q.x(), q.y(), q.z()) - sign * p).cwiseAbs().maxCoeff() < 4e-16);
+  }
+}
+
 TEST_CASE("a body added near its singular set starts on a re-centered chart", "[scene][chart]") {
   // A Gibbs body at phi = 170 deg (10 deg from its singularity) and a proper Euler ZXZ body at
   // the identity (theta2 = 0: exactly singular) start at their chart centers with a base.

@@ -16,6 +16,8 @@
 #include <tuple>
 #include <type_traits>
 
+#include <Eigen/Geometry>
+
 #include "tumble/core/types.hpp"
 #include "tumble/force/coupling.hpp"
 #include "tumble/scene/detail/body_terms.hpp"
@@ -94,6 +96,28 @@ template <class SceneT, class Body>
                                        const SceneStateView& s) {
   return detail::rotation_of(scene.entry(b), s);
 }
+/// The unit quaternion of body b's R (body -> inertial, chart base included), with w >= 0: from
+/// its parameters (P::to_quaternion), normalized, not through R (half the work of R and Shepperd's
+/// method; the two agree to rounding). The base of a chart, constant between switches, is
+/// converted only when it is not the identity.
+template <class SceneT, class Body>
+[[nodiscard]] Eigen::Quaterniond quaternion(const SceneT& scene, BodyId<Body> b,
+                                            const SceneStateView& s) {
+  using P = typename Body::Param;
+  const auto& e = scene.entry(b);
+  Eigen::Quaterniond q = P::to_quaternion(detail::theta_of(e, s));
+  if constexpr (Chart<P>::has_singularity) {
+    const Matrix3<double>& base = s.base[e.id];
+    if (!base.isIdentity(0.0)) {
+      q = Eigen::Quaterniond(base) * q;
+    }
+  }
+  q.normalize();
+  if (q.w() < 0) {
+    q.coeffs() = -q.coeffs();
+  }
+  return q;
+}
 /// omega of body b, body components, rad/s.
 template <class SceneT, class Body>
 [[nodiscard]] Vector3<double> omega(const SceneT& scene, BodyId<Body> b, const SceneStateView& s) {
@@ -156,10 +180,18 @@ template <class SceneT>
 [[nodiscard]] double kinetic_energy(const SceneT& scene, const SceneStateView& s) {
   double t = 0;
   scene.for_each_entry([&](const auto& e) {
-    const Vector3<double> vg = detail::centroid_velocity_of(e, s);
+    using Body = std::remove_cvref_t<decltype(e.body)>;
     const Vector3<double> w = detail::omega_of(e, s);
     const auto& mp = e.body.mass_properties();
-    t += 0.5 * (mp.mass() * vg.squaredNorm() + w.dot(mp.inertia_centroid() * w));
+    // |v_g|^2: a body held at a fixed point has v_g = R (omega x r_g), of the same norm as
+    // omega x r_g (R is a rotation), so no R is formed for it.
+    double vg2 = 0.0;
+    if constexpr (Body::fixed) {
+      vg2 = w.cross(mp.centroid()).squaredNorm();
+    } else {
+      vg2 = detail::centroid_velocity_of(e, s).squaredNorm();
+    }
+    t += 0.5 * (mp.mass() * vg2 + w.dot(mp.inertia_centroid() * w));
   });
   return t;
 }
