@@ -1,7 +1,8 @@
 #pragma once
-// CompiledScene (scene_api.hpp) for the scene of parameterization P, with or without a Python
-// load: included by the generated scene sources only (python/src/scene_of.cpp.in), one
-// (P, variant) per translation unit, each about 30 s and 1.4 GB of g++ -O3.
+// CompiledScene (scene_api.hpp) for the scenes of parameterization P (SceneKind: any scene, with
+// or without a Python load, or one body without loads): included by the generated scene sources
+// only (python/src/scene_of.cpp.in), one (P, kind) per translation unit, each 20-80 s and up to
+// 2.9 GB of g++ -O3.
 
 #include <cmath>
 #include <cstddef>
@@ -28,56 +29,96 @@ namespace tumble::python::detail {
 
 template <class P, ReferencePoint Ref> using RB = RigidBody<P, Ref>;
 
-template <class P, bool WithPython> struct SceneTypes {
-  using Bodies = tumble::Bodies<RB<P, ReferencePoint::centroid>, RB<P, ReferencePoint::offset>,
-                                RB<P, ReferencePoint::fixed_point>>;
-  using Standard =
-      tumble::Loads<UniformGravity, PointForce, BodyMoment, SpringDamper, SpringDamperBetween>;
-  using WithUser = tumble::Loads<UniformGravity, PointForce, BodyMoment, SpringDamper,
-                                 SpringDamperBetween, UserForce<PythonLoad>>;
-  using Type = Scene<Bodies, std::conditional_t<WithPython, WithUser, Standard>>;
+/// The scene types the module compiles per parameterization P: `standard` and `with_python`
+/// take any scene (the three body types, every load type); the three lean kinds take one body
+/// of one reference point and no loads, the scene type a C++ user writes for a tumbling body.
+/// A scene type that lists load types runs an unloaded scene about 9 % slower than the lean one
+/// (GCC 12 compiles the stage for the loaded path too), and one that lists the three body types
+/// without loads 27 % slower (its stage calls the parameterization's functions out of line;
+/// docs/benchmarks/python.md), so build_scene() picks a lean kind of one body type where it
+/// can. Same arithmetic, same results.
+enum class SceneKind { standard, with_python, centroid, offset, fixed_point };
+
+template <class P>
+using AnyBodies = tumble::Bodies<RB<P, ReferencePoint::centroid>, RB<P, ReferencePoint::offset>,
+                                 RB<P, ReferencePoint::fixed_point>>;
+using StandardLoads =
+    tumble::Loads<UniformGravity, PointForce, BodyMoment, SpringDamper, SpringDamperBetween>;
+
+template <class P, SceneKind K> struct SceneTypes {
+  static constexpr ReferencePoint kRef = K == SceneKind::centroid ? ReferencePoint::centroid
+                                         : K == SceneKind::offset ? ReferencePoint::offset
+                                                                  : ReferencePoint::fixed_point;
+  using BodyList = tumble::Bodies<RB<P, kRef>>;
+  using Type = Scene<BodyList, tumble::Loads<>>;
+};
+template <class P> struct SceneTypes<P, SceneKind::standard> {
+  using BodyList = AnyBodies<P>;
+  using Type = Scene<BodyList, StandardLoads>;
+};
+template <class P> struct SceneTypes<P, SceneKind::with_python> {
+  using BodyList = AnyBodies<P>;
+  using Type = Scene<BodyList, tumble::Loads<UniformGravity, PointForce, BodyMoment, SpringDamper,
+                                             SpringDamperBetween, UserForce<PythonLoad>>>;
 };
 
 inline std::string method_name(AutoMethod m) { return name(m); }
 
-template <class P, bool WithPython> class SceneOf final : public CompiledScene {
-  using SceneT = typename SceneTypes<P, WithPython>::Type;
-  using Centroid = RB<P, ReferencePoint::centroid>;
-  using Offset = RB<P, ReferencePoint::offset>;
-  using Fixed = RB<P, ReferencePoint::fixed_point>;
-  using Id = std::variant<BodyId<Centroid>, BodyId<Offset>, BodyId<Fixed>>;
+template <class T, class Tuple> struct TupleHas;
+template <class T, class... X>
+struct TupleHas<T, std::tuple<X...>> : std::bool_constant<(std::is_same_v<T, X> || ...)> {};
+
+template <class P, class SceneT, class BodyList> class SceneOfBodies;
+
+template <class P, SceneKind K>
+using SceneOf =
+    SceneOfBodies<P, typename SceneTypes<P, K>::Type, typename SceneTypes<P, K>::BodyList>;
+
+/// CompiledScene of SceneT, whose body types are B... (RigidBody<P, Ref>).
+template <class P, class SceneT, class... B>
+class SceneOfBodies<P, SceneT, tumble::Bodies<B...>> final : public CompiledScene {
+  using Id = std::variant<BodyId<B>...>;
+  template <class T>
+  static constexpr bool kHasLoad = TupleHas<T, typename SceneT::LoadTypes>::value;
+  template <ReferencePoint Ref> static constexpr bool kHasBody = ((B::reference == Ref) || ...);
+  static constexpr bool kLean =
+      sizeof...(B) == 1 && std::tuple_size_v<typename SceneT::LoadTypes> == 0;
+  /// The state size of a lean scene's one body.
+  static constexpr int kOneBody = state_size<SceneT, B...>;
 
  public:
-  SceneOf(const std::vector<BodyRecord>& bodies, const std::vector<LoadRecord>& loads,
-          const std::vector<PythonEvent>& events) {
+  SceneOfBodies(const std::vector<BodyRecord>& bodies, const std::vector<LoadRecord>& loads,
+                const std::vector<PythonEvent>& events) {
     for (const BodyRecord& r : bodies) {
       const void* native = r.body->rigid_body();
-      switch (r.body->reference()) {
-        case ReferencePoint::centroid:
-          ids_.emplace_back(scene_.add(*static_cast<const Centroid*>(native), r.initial));
-          break;
-        case ReferencePoint::offset:
-          ids_.emplace_back(scene_.add(*static_cast<const Offset*>(native), r.initial));
-          break;
-        case ReferencePoint::fixed_point:
-          ids_.emplace_back(scene_.add(*static_cast<const Fixed*>(native), r.initial));
-          break;
+      const auto add = [&]<class Body>() {  // r's body, if its type is Body
+        if (r.body->reference() != Body::reference) {
+          return false;
+        }
+        ids_.emplace_back(scene_.add(*static_cast<const Body*>(native), r.initial));
+        return true;
+      };
+      const bool added = (add.template operator()<B>() || ...);
+      if (!added) {
+        throw std::logic_error("tumble: a body's reference point not in the compiled scene");
       }
     }
     for (const LoadRecord& l : loads) {
       std::visit(
           [&](const auto& load) {
             using L = std::decay_t<decltype(load)>;
-            if constexpr (std::is_same_v<L, SpringDamperBetween>) {
-              std::visit([&](auto a, auto b) { scene_.add_load(a, b, load); }, ids_.at(l.a),
-                         ids_.at(l.b));
-            } else if constexpr (std::is_same_v<L, PythonLoad>) {
-              if constexpr (WithPython) {
+            if constexpr (std::is_same_v<L, PythonLoad>) {
+              if constexpr (kHasLoad<UserForce<PythonLoad>>) {
                 std::visit([&](auto a) { scene_.add_load(a, UserForce<PythonLoad>(load)); },
                            ids_.at(l.a));
               } else {
                 throw std::logic_error("tumble: a Python load in a scene compiled without one");
               }
+            } else if constexpr (!kHasLoad<L>) {
+              throw std::logic_error("tumble: a load in a scene compiled without loads");
+            } else if constexpr (std::is_same_v<L, SpringDamperBetween>) {
+              std::visit([&](auto a, auto b) { scene_.add_load(a, b, load); }, ids_.at(l.a),
+                         ids_.at(l.b));
             } else {
               std::visit([&](auto a) { scene_.add_load(a, load); }, ids_.at(l.a));
             }
@@ -138,12 +179,14 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
   }
   [[nodiscard]] Eigen::Vector3d reaction_force(int id, const SceneState& s,
                                                double t) const override {
-    const auto* b = std::get_if<BodyId<Fixed>>(&ids_.at(id));
-    if (b == nullptr) {
-      throw std::invalid_argument("tumble.Scene.reaction_force: body " + std::to_string(id) +
-                                  " is not held at a fixed point");
+    using Fixed = RB<P, ReferencePoint::fixed_point>;
+    if constexpr (kHasBody<ReferencePoint::fixed_point>) {
+      if (const auto* b = std::get_if<BodyId<Fixed>>(&ids_.at(id))) {
+        return tumble::reaction_force(scene_, *b, s, t);
+      }
     }
-    return tumble::reaction_force(scene_, *b, s, t);
+    throw std::invalid_argument("tumble.Scene.reaction_force: body " + std::to_string(id) +
+                                " is not held at a fixed point");
   }
   [[nodiscard]] Eigen::VectorXd rhs(double t, const SceneState& s) const override {
     SceneWorkspace<SceneT> ws(scene_);
@@ -228,10 +271,7 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
       std::visit(
           [&](auto b) {
             const Eigen::Vector3d r = tumble::position(scene_, b, s);
-            Eigen::Quaterniond q(tumble::rotation(scene_, b, s));
-            if (q.w() < 0) {
-              q.coeffs() = -q.coeffs();
-            }
+            const Eigen::Quaterniond q = tumble::quaternion(scene_, b, s);  // w >= 0
             const Eigen::Vector3d v = tumble::velocity(scene_, b, s);
             const Eigen::Vector3d w = tumble::omega(scene_, b, s);
             out.insert(out.end(), {r(0), r(1), r(2), q.w(), q.x(), q.y(), q.z(), v(0), v(1), v(2),
@@ -276,9 +316,9 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
 
   /// The state sizes of a scene of one body: free ([r; theta; v; omega]) or held at a fixed point
   /// ([theta; omega]).
-  static constexpr int kFree = state_size<SceneT, Centroid>;
-  static constexpr int kHeld = state_size<SceneT, Fixed>;
-  static_assert(kFree != kHeld && state_size<SceneT, Offset> == kFree);
+  static constexpr int kFree = state_size<SceneT, RB<P, ReferencePoint::centroid>>;
+  static constexpr int kHeld = state_size<SceneT, RB<P, ReferencePoint::fixed_point>>;
+  static_assert(kFree != kHeld && state_size<SceneT, RB<P, ReferencePoint::offset>> == kFree);
 
   /// Calls f(make, method name) with make(scene, t0, s0) constructing the integrator the options
   /// name (the method's name empty for the front door, whose statistics say what ran). The one
@@ -292,9 +332,16 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
   template <class F> void with_factory(const RunOptions& o, F&& f) const {
     const int size = scene_.size();
     if (o.method == "auto") {
+      // A lean scene's one body fixes the explicit path's size: the same steps and results as
+      // Eigen::Dynamic, and in this unit half the time (the tumbling body held, 1e-8, 101 outputs:
+      // 159 -> 79 us from Python).
+      constexpr int n = kLean ? kOneBody : Eigen::Dynamic;
+      if (kLean && size != n) {
+        throw std::logic_error("tumble: a lean scene of more than one body");
+      }
       f(
           [opt = auto_options(o)](const SceneT& s, double t, const SceneState& y) {
-            return AutoIntegrator<SceneT>(s, t, y, opt);
+            return AutoIntegrator<SceneT, n>(s, t, y, opt);
           },
           std::string());
     } else if (o.method == "bdf" || o.method == "adams") {
@@ -312,7 +359,12 @@ template <class P, bool WithPython> class SceneOf final : public CompiledScene {
             },
             o.method + " (OdeintIntegrator)");
       };
-      if (size == kFree) {
+      if constexpr (kLean) {  // one body: its size only
+        if (size != kOneBody) {
+          throw std::logic_error("tumble: a lean scene of more than one body");
+        }
+        odeint.template operator()<kOneBody>();
+      } else if (size == kFree) {
         odeint.template operator()<kFree>();
       } else if (size == kHeld) {
         odeint.template operator()<kHeld>();
