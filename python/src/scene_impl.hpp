@@ -66,7 +66,7 @@ inline std::string method_name(AutoMethod m) { return name(m); }
 
 template <class T, class Tuple> struct TupleHas;
 template <class T, class... X>
-struct TupleHas<T, std::tuple<X...>> : std::bool_constant<(std::is_same_v<T, X> || ...)> {};
+struct TupleHas<T, std::tuple<X...>> : std::bool_constant<tumble::detail::contains<T, X...>> {};
 
 template <class P, class SceneT, class BodyList> class SceneOfBodies;
 
@@ -89,6 +89,9 @@ class SceneOfBodies<P, SceneT, tumble::Bodies<B...>> final : public CompiledScen
  public:
   SceneOfBodies(const std::vector<BodyRecord>& bodies, const std::vector<LoadRecord>& loads,
                 const std::vector<PythonEvent>& events) {
+    if (kLean && bodies.size() != 1) {
+      throw std::logic_error("tumble: a lean scene of more than one body");
+    }
     for (const BodyRecord& r : bodies) {
       const void* native = r.body->rigid_body();
       const auto add = [&]<class Body>() {  // r's body, if its type is Body
@@ -336,9 +339,6 @@ class SceneOfBodies<P, SceneT, tumble::Bodies<B...>> final : public CompiledScen
       // Eigen::Dynamic, and in this unit half the time (the tumbling body held, 1e-8, 101 outputs:
       // 159 -> 79 us from Python).
       constexpr int n = kLean ? kOneBody : Eigen::Dynamic;
-      if (kLean && size != n) {
-        throw std::logic_error("tumble: a lean scene of more than one body");
-      }
       f(
           [opt = auto_options(o)](const SceneT& s, double t, const SceneState& y) {
             return AutoIntegrator<SceneT, n>(s, t, y, opt);
@@ -359,10 +359,7 @@ class SceneOfBodies<P, SceneT, tumble::Bodies<B...>> final : public CompiledScen
             },
             o.method + " (OdeintIntegrator)");
       };
-      if constexpr (kLean) {  // one body: its size only
-        if (size != kOneBody) {
-          throw std::logic_error("tumble: a lean scene of more than one body");
-        }
+      if constexpr (kLean) {  // one body (the constructor checked): its size only
         odeint.template operator()<kOneBody>();
       } else if (size == kFree) {
         odeint.template operator()<kFree>();

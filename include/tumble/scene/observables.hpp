@@ -175,7 +175,8 @@ requires Body::fixed void set_velocity(const SceneT& scene, BodyId<Body> b, Scen
   set_velocity(scene, b, s, Vector3<double>::Zero(), omega_body);
 }
 
-/// Sum of the kinetic energies, J.
+/// Sum of the kinetic energies, J: per body T = 1/2 qdot^T M qdot (M of Eq. 1.23)
+/// = 1/2 m |v_g|^2 + 1/2 omega . I_g omega.
 template <class SceneT>
 [[nodiscard]] double kinetic_energy(const SceneT& scene, const SceneStateView& s) {
   double t = 0;

@@ -229,8 +229,6 @@ template <class System> class CvodeCore {
     if (options_.max_order > 0) {
       check(CVodeSetMaxOrd(mem, options_.max_order), "CVodeSetMaxOrd");
     }
-    chunk_ = options_.max_steps > 0 ? std::min(kStepChunk, options_.max_steps) : kStepChunk;
-    check(CVodeSetMaxNumSteps(mem, chunk_), "CVodeSetMaxNumSteps");
     if (options_.initial_step > 0.0) {
       check(CVodeSetInitStep(mem, options_.initial_step), "CVodeSetInitStep");
     }
@@ -362,11 +360,8 @@ template <class System> class CvodeCore {
     long taken = 0;  // steps of this call
     for (;;) {
       errors_.clear();
-      const long chunk = budget > 0 ? std::min(kStepChunk, budget - taken) : kStepChunk;
-      if (chunk != chunk_) {
-        check(CVodeSetMaxNumSteps(mem_.get(), chunk), "CVodeSetMaxNumSteps");
-        chunk_ = chunk;
-      }
+      const long chunk = budget > 0 ? std::min(kStepChunk, budget - taken) : kStepChunk;  // > 0
+      check(CVodeSetMaxNumSteps(mem_.get(), chunk), "CVodeSetMaxNumSteps");  // a store in CVODE
       const double before = t_;
       sun_real reached = t_;
       const int flag = CVode(mem_.get(), tout, y_.get(), &reached, task);
@@ -596,7 +591,6 @@ template <class System> class CvodeCore {
   long roots_found_ = 0;
   long reinits_ = 0;
   bool segment_started_ = false;
-  long chunk_ = 0;  ///< CVODE's current step limit per CVode() call (call_cvode())
   ContextHandle context_;
   NVectorHandle y_;
   NVectorHandle atol_;
