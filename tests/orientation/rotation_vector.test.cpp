@@ -216,8 +216,9 @@ const Reference kReferences[] = {
 // The coefficient functions (sin phi / phi, a, b, d, c1, c2, cos(phi/2), sin(phi/2) / phi) at
 // exact dyadic x = phi^2, computed with mpmath at 150 digits from the closed forms of the header
 // comment (at small x they cancel ~x^2 of the digits; the rows with x <= 1 agree with the exact
-// 30-term series to the 22 printed digits). The rows straddle every threshold: x = 4 (the cap),
-// 2.5637 (d in double), 1.4261 (d in long double).
+// 30-term series to the 22 printed digits). The rows straddle every threshold: x = 4 (the cap of
+// the half-angle series), 12.25 (the cap of the coefficient series), 2.5637 (d in double), 1.4261
+// (d in long double), and phi = pi (x = 9.8696), where sin phi / phi and cos(phi/2) vanish.
 struct CoefficientReference {
   LD x;
   LD f[8];
@@ -284,6 +285,22 @@ const CoefficientReference kCoefficients[] = {
      {4.704000268662240736691e-2L, 2.211102774000494952524e-1L, 1.058844441459308436259e-1L,
       9.929197039400236964628e-2L, -4.390895023483073145976e-2L, -1.072700611530478173614e-2L,
       7.073720166770291008819e-2L, 3.324983288680181436472e-1L}},
+    {9.75L,
+     {6.11449171381359340611e-3L, 2.051095099198807609868e-1L, 1.019369752088396314455e-1L,
+      1.010353403055707700512e-1L, -4.144661826932799267359e-2L, -1.032835032888596239485e-2L,
+      9.546682176614564001881e-3L, 3.202417133353186088237e-1L}},
+    {9.875L,
+     {-2.732321758992758756608e-4L, 2.025316082417024000567e-1L, 1.012934918659138507216e-1L,
+      1.013341308413745708266e-1L, -4.104672897815737478371e-2L, -1.026317644111788882107e-2L,
+      -4.293094389827923639975e-4L, 3.18222884344999927644e-1L}},
+    {12.1875L,
+     {-9.807835092941459943725e-2L, 1.591429925399700297684e-1L, 9.009873648651606969742e-2L,
+      1.073350042774203971325e-1L, -3.416322756999833099275e-2L, -9.12026395237564548298e-3L,
+      -1.738458777468066140587e-1L, 2.820842006741692984395e-1L}},
+    {12.3125L,
+     {-1.023448920535760215127e-1L, 1.570185980637932382182e-1L, 8.953054960841226570662e-2L,
+      1.07687353568619590962e-1L, -3.381783457308933993495e-2L, -9.061770620218766205213e-3L,
+      -1.826314750249060361002e-1L, 2.801951088650489257664e-1L}},
     {20L,
      {-2.171843183512395044731e-1L, 6.189741959902955471393e-2L, 6.085921591756197522366e-2L,
       1.377194557374749519307e-1L, -1.704895787746493069505e-2L, -6.034011407682818547852e-3L,
@@ -328,9 +345,13 @@ TEMPLATE_TEST_CASE("Rotation vector against 50-digit references (Taylor branches
 TEMPLATE_TEST_CASE("Rotation vector coefficient functions against 150-digit references",
                    "[orientation][rotation_vector]", float, double, long double) {
   using S = TestType;
-  // Series below the thresholds, closed forms above: all near eps. Measured at most 10.9 eps
-  // (c2 in double just above the cap x = 4, where its closed form cancels ~100 eps / x^2) and
-  // 9.9 eps (a in float at x = 35, phi = 5.9, from rounding phi = sqrt(x) near 2 pi).
+  // Series below the thresholds, closed forms above: all near eps. Measured at most 9.9 eps (a
+  // in float at x = 35, phi = 5.9, from rounding phi = sqrt(x) near 2 pi); the series up to the
+  // cap x = 12.25 at most 4.3 eps (c2 in long double at x = 12.19).
+  // sin phi / phi and cos(phi/2) vanish at phi = pi: there both forms give them to an absolute
+  // eps only (1 - x b is a difference of numbers near 1; sin and cos of sqrt(x) inherit the
+  // rounding of phi), which is what R's and the quaternion's entries need. They are measured
+  // against max(|f|, 1): relative where |f| >= 1 (at the identity), absolute near pi.
   const LD tol = 16 * eps<S>();
   for (const auto& ref : kCoefficients) {
     INFO("x = " << static_cast<double>(ref.x));
@@ -338,7 +359,9 @@ TEMPLATE_TEST_CASE("Rotation vector coefficient functions against 150-digit refe
     const S got[8] = {f.sinc(), f.a(), f.b(), f.d(), f.c1(), f.c2(), f.half_cos(), f.half_sinc()};
     for (int i = 0; i < 8; ++i) {
       INFO("function " << i);
-      CHECK(std::abs((static_cast<LD>(got[i]) - ref.f[i]) / ref.f[i]) < tol);
+      const bool zero_at_pi = i == 0 || i == 6;
+      const LD scale = zero_at_pi ? std::max(std::abs(ref.f[i]), 1.0L) : std::abs(ref.f[i]);
+      CHECK(std::abs(static_cast<LD>(got[i]) - ref.f[i]) / scale < tol);
     }
   }
 }
@@ -364,8 +387,10 @@ TEMPLATE_TEST_CASE("Rotation vector series and closed forms agree across the thr
     CHECK(rel_err(P::thetadot(lo, w), P::thetadot(hi, w)) < tol);
     CHECK(rel_err(P::to_quaternion(lo).coeffs(), P::to_quaternion(hi).coeffs()) < tol);
   }
-  // The thresholds follow from epsilon: phi = 2 (the cap) for the coefficient functions.
-  CHECK(static_cast<double>(lim.series) == 4.0);
+  // The thresholds follow from epsilon up to the caps: phi = 3.5 for the coefficient functions
+  // (every canonical vector, phi <= pi, from the series), phi = 2 for cos(phi/2).
+  CHECK(static_cast<double>(lim.series) == 12.25);
+  CHECK(static_cast<double>(lim.half_cos) == 4.0);
 }
 
 TEMPLATE_TEST_CASE("Rotation vector R matches Eigen::AngleAxis and is a rotation",

@@ -29,22 +29,30 @@
 //     A2 = (1/2 - a) / x = sum_k (-x)^k / (2k+4)!,    B2 = (1/6 - b) / x = sum_k (-x)^k / (2k+5)!,
 // by algebra that does not cancel (class PhiFunctions):
 //     a = 1/2 - x A2,  b = 1/6 - x B2,  sin phi / phi = 1 - x b,  c1 = 2 A2 - b,  c2 = 3 B2 - A2,
-//     d = (a - 2 b) / (2 sin phi / phi) = (1/6 - x (A2 - 2 B2)) / (2 sin phi / phi),
-// (from 1 + cos phi = 2 - x a and phi sin phi = x (1 - x b)): one branch and two series per
-// attitude, shared by R, G, Gdot vdot and G^-1 (Precomputed). Each series keeps its terms up to
-// the first below eps |c_0| at x = 4 (double: 11 of each, float: 7 and 6, x86 long double: 13 and
-// 12) and is used for
-//     x < x_s = min(4, (eps |c_0 / c_{n-1}|)^(1/(n-1)))      (n terms kept),
+//     d = (b - 2 A2) / (2 a) = -c1 / (2 a)
+// (d: (phi/2) cot(phi/2) = (sin phi / phi) / (2 a), so d = (2 a - sin phi / phi) / (2 a x), and
+// 2 a - sin phi / phi = x (b - 2 A2); regular through phi = pi, where a = 2 / pi^2): one branch
+// and two series per attitude, shared by R, G, Gdot vdot and G^-1 (Precomputed), and no sqrt,
+// sine, cosine or division but d's. Each series keeps its terms up to the first below eps |c_0|
+// at the cap x = 12.25 (double: 14 of A2 and 13 of B2, float: 9 and 8, x86 long double: 16 and
+// 15; both are summed to the longer's count, in one packed evaluation for float and double) and
+// is used for
+//     x < x_s = min(12.25, (eps |c_0 / c_{n-1}|)^(1/(n-1)))      (n terms kept),
 // where the last term kept is eps times the first, so the truncation error (the next term, a
-// further factor x / ((2n + 4)(2n + 5)) smaller) is below eps. The cap x <= 4 (phi <= 2) is where
-// the closed forms are accurate again (c2, the worst, to ~11 eps in double, ~13 eps in x86 long
-// double, where sin phi = 2 sin(phi/2) cos(phi/2) adds a rounding that phi - sin phi amplifies)
-// and the series' rounding is still ~1 eps; the derived coefficients add a few roundings
-// (measured on 400 points of [0, 4.5] against mpmath: at most 4.8 eps, c2 = 3 B2 - A2; d 2.9
-// eps; the others <= 2.5 eps). The series are summed by Estrin's scheme (depth log2(n), not
-// Horner's n - 1: their latency is most of the branch's). This gives phi_s = 2 in float, double
-// and x86 long double. A long double with a longer mantissa (128-bit quad) gets x_s = 0.34 and
-// loses up to ~1000 eps (~1e-31) in the closed forms above it, still far below double's eps.
+// further factor x / ((2n + 4)(2n + 5)) smaller) is below eps. The cap, phi = 3.5, takes every
+// canonical vector (phi <= pi, see canonical(): a scene leaves the chart at phi = pi) and the
+// stages of a step past pi. The series cancel little there (the sum of their terms' magnitudes
+// is at most 2.3 times the value), and the derived coefficients add a few roundings: against
+// long double closed forms on 20,000 points of [2, 12.25], double's series are within 3.7 eps
+// (a), 1.5 (b), 5.0 (d), 3.8 (c1) and 6.7 eps (c2), where the closed forms on [2, 12.25] give
+// 1.6, 2.0, 4.1, 4.1 and 12.2 eps (c2's phi - sin phi cancels); sin phi / phi is known to an
+// absolute 2 eps near pi in either form (it vanishes there), which is what R needs. The series are
+// summed by Estrin's scheme (depth log2(n), not Horner's n - 1: their latency is most of the
+// branch's). This gives phi_s = 3.5 in float, double and x86 long double. A long double with a
+// longer mantissa (128-bit quad) gets a smaller x_s (its sixteen terms reach its eps sooner) and
+// the closed forms above it, where it loses up to ~1000 eps (~1e-31), still far below double's eps.
+// cos(phi/2) and sin(phi/2) / phi (to_quaternion) have series of their own by the same rule with
+// the cap x = 4 (phi = 2), where their closed forms are accurate again.
 // from_quaternion() uses the series of atan(t)/t in t^2 = e.e / e0^2 by the same rule (there
 // atan2(|e|, e0) / |e| does not cancel; the branch only avoids sqrt(0) at the identity; its
 // threshold, t^2 = 0.08 in double, stays inside the radius of convergence t^2 < 1).
@@ -132,7 +140,10 @@ inline constexpr long double kA2[] = {1.0L / 24.0L,
                                       -1.0L / 1124000727777607680000.0L,
                                       1.0L / 620448401733239439360000.0L,
                                       -1.0L / 403291461126605635584000000.0L,
-                                      1.0L / 304888344611713860501504000000.0L};
+                                      1.0L / 304888344611713860501504000000.0L,
+                                      -1.0L / 265252859812191058636308480000000.0L,
+                                      1.0L / 263130836933693530167218012160000000.0L,
+                                      -1.0L / 295232799039604140847618609643520000000.0L};
 // B2 = (1/6 - b) / x = (sin phi - phi + phi^3 / 6) / phi^5 (the series of b from its second term,
 // negated)
 inline constexpr long double kB2[] = {1.0L / 120.0L,
@@ -147,14 +158,20 @@ inline constexpr long double kB2[] = {1.0L / 120.0L,
                                       -1.0L / 25852016738884976640000.0L,
                                       1.0L / 15511210043330985984000000.0L,
                                       -1.0L / 10888869450418352160768000000.0L,
-                                      1.0L / 8841761993739701954543616000000.0L};
+                                      1.0L / 8841761993739701954543616000000.0L,
+                                      -1.0L / 8222838654177922817725562880000000.0L,
+                                      1.0L / 8683317618811886495518194401280000000.0L,
+                                      -1.0L / 10333147966386144929666651337523200000000.0L};
 // atan(t) / t in t^2 (radius of convergence t^2 < 1)
 inline constexpr long double kAtanc[] = {1.0L,         -1.0L / 3.0L,  1.0L / 5.0L,  -1.0L / 7.0L,
                                          1.0L / 9.0L,  -1.0L / 11.0L, 1.0L / 13.0L, -1.0L / 15.0L,
                                          1.0L / 17.0L, -1.0L / 19.0L, 1.0L / 21.0L, -1.0L / 23.0L,
                                          1.0L / 25.0L, -1.0L / 27.0L};
 
-inline constexpr long double kXMax = 4.0L;  // phi <= 2, see the file comment
+// The caps of the series' intervals (see the file comment): phi <= 2 for the half-angle functions,
+// phi <= 3.5 for A2 and B2 (canonical vectors, phi <= pi, and the stages of a step past pi).
+inline constexpr long double kXMax = 4.0L;
+inline constexpr long double kCoefficientXMax = 12.25L;
 
 /// The number of terms of the series c kept for the value type V: all up to the first whose
 /// magnitude at x_max is below eps |c_0| (the later ones are smaller still on [0, x_max] and do
@@ -190,7 +207,7 @@ template <class V, std::size_t N>
 /// below n: log2(n) levels of multiply-adds whose chains run in parallel, where Horner's rule is
 /// one chain of n - 1 (the latency of a call's whole series branch). xp[j] = x^(2^j).
 template <const auto& c, std::size_t off, std::size_t n, class S>
-[[nodiscard]] S estrin(const S (&xp)[4]) {
+[[nodiscard, gnu::always_inline]] inline S estrin(const S (&xp)[4]) {
   using V = decltype(value(std::declval<S>()));
   if constexpr (n == 1) {
     return S(V(c[off]));
@@ -202,15 +219,28 @@ template <const auto& c, std::size_t off, std::size_t n, class S>
   }
 }
 
-/// The series c at x: its first series_terms terms for the value type of S (a count known at
-/// compile time), by Estrin's scheme.
-template <const auto& c, class S> [[nodiscard]] S series(const S& x) {
-  using V = decltype(value(std::declval<S>()));
-  constexpr std::size_t n = series_terms<V>(c, kXMax);
+/// The series c at x, its first n terms, by Estrin's scheme.
+template <const auto& c, std::size_t n, class S>
+[[nodiscard, gnu::always_inline]] inline S series(const S& x) {
   const S x2 = x * x;
   const S x4 = x2 * x2;
   const S xp[4] = {x, x2, x4, S(x4 * x4)};
   return estrin<c, 0, n>(xp);
+}
+
+/// Two series c and d at the same x, as one Estrin evaluation of the pair (c_k, d_k) on a packed
+/// 2-vector A (Eigen::Array<V, 2, 1>): the same operations as two `estrin` calls, each applied
+/// to both lanes at once.
+template <const auto& c, const auto& d, std::size_t off, std::size_t n, class A>
+[[nodiscard, gnu::always_inline]] inline A estrin2(const A (&xp)[4]) {
+  using V = typename A::Scalar;
+  if constexpr (n == 1) {
+    return A(V(c[off]), V(d[off]));
+  } else {
+    constexpr std::size_t m = std::bit_floor(n - 1);
+    const A hi = estrin2<c, d, off + m, n - m>(xp);
+    return estrin2<c, d, off, m>(xp) + xp[std::countr_zero(m)] * hi;
+  }
 }
 
 /// The thresholds for the value type V, computed once: `series` for the coefficient functions
@@ -220,7 +250,8 @@ template <class V> struct Limits { V series, half_cos, half_sinc, atanc; };
 
 template <class V> [[nodiscard]] const Limits<V>& limits() {
   constexpr long double x_max = kXMax;
-  static const Limits<V> l{std::min(series_limit<V>(kA2, x_max), series_limit<V>(kB2, x_max)),
+  constexpr long double xc_max = kCoefficientXMax;
+  static const Limits<V> l{std::min(series_limit<V>(kA2, xc_max), series_limit<V>(kB2, xc_max)),
                            series_limit<V>(kHalfCos, x_max), series_limit<V>(kHalfSinc, x_max),
                            series_limit<V>(kAtanc, x_max)};
   return l;
@@ -230,8 +261,9 @@ template <class V> [[nodiscard]] const Limits<V>& limits() {
 /// (x < limits().series) all follow from two series, A2 = (1/2 - a) / x and B2 = (1/6 - b) / x
 /// (no sqrt, so AD derivatives stay finite at v = 0), without cancellation:
 ///     a = 1/2 - x A2,   b = 1/6 - x B2,   sin phi / phi = 1 - x b,
-///     c1 = 2 A2 - b,    c2 = 3 B2 - A2,   d = (1/6 - x (A2 - 2 B2)) / (2 sin phi / phi)
-/// (d = (a - 2 b) / (2 sin phi / phi), since 1 + cos phi = 2 - x a and phi sin phi = x (1 - x b)).
+///     c1 = 2 A2 - b,    c2 = 3 B2 - A2,   d = (b - 2 A2) / (2 a) = -c1 / (2 a)
+/// (d: (phi/2) cot(phi/2) = sinc / (2 a), so d = (2 a - sinc) / (2 a x), and 2 a - sinc =
+/// x (b - 2 A2); regular through phi = pi, where a = 2 / pi^2).
 /// Above it, their closed forms. phi, sin(phi/2) and cos(phi/2) (one sincos; sin phi is
 /// 2 sin(phi/2) cos(phi/2)), or A2 and B2, are computed once, and only when needed.
 template <class S> class PhiFunctions {
@@ -245,73 +277,86 @@ template <class S> class PhiFunctions {
   [[nodiscard]] bool uses_series() const { return series_; }
 
   /// sin(phi) / phi
-  S sinc() {
+  [[gnu::always_inline]] S sinc() {
     if (series_) return S(1) - x_ * b();
     trig();
     return s_ / phi_;
   }
   /// a = (1 - cos phi) / phi^2, as 2 sin^2(phi/2) / phi^2 (no cancellation).
-  S a() {
+  [[gnu::always_inline]] S a() {
     if (series_) return S(0.5) - x_ * a2();
     trig();
     return S(2) * sh_ * sh_ / x_;
   }
   /// b = (phi - sin phi) / phi^3
-  S b() {
+  [[gnu::always_inline]] S b() {
     if (series_) return S(V(1) / V(6)) - x_ * b2();
     trig();
     return (phi_ - s_) / (x_ * phi_);
   }
   /// d = 1/phi^2 - cos(phi/2) / (2 phi sin(phi/2)) (regular at phi = pi, singular at 2 pi).
-  S d() {
+  [[gnu::always_inline]] S d() {
     if (series_) {
-      const S e = a2() - S(2) * b2();
-      return (S(V(1) / V(6)) - x_ * e) / (S(2) * sinc());
+      return (b() - S(2) * a2()) / (S(2) * a());  // one division
     }
     trig();
     return (S(2) * sh_ - phi_ * ch_) / (S(2) * x_ * sh_);  // one division
   }
   /// c1 = (phi sin phi - 2 (1 - cos phi)) / phi^4
-  S c1() {
+  [[gnu::always_inline]] S c1() {
     if (series_) return S(2) * a2() - b();
     trig();
     return (phi_ * s_ - S(4) * sh_ * sh_) / (x_ * x_);
   }
   /// c2 = ((1 - cos phi) phi - 3 (phi - sin phi)) / phi^5
-  S c2() {
+  [[gnu::always_inline]] S c2() {
     if (series_) return S(3) * b2() - a2();
     trig();
     return (S(2) * sh_ * sh_ * phi_ - S(3) * (phi_ - s_)) / (x_ * x_ * phi_);
   }
   /// cos(phi/2)
   S half_cos() {
-    if (xv_ < lim_.half_cos) return series<kHalfCos>(x_);
+    if (xv_ < lim_.half_cos) return series<kHalfCos, series_terms<V>(kHalfCos, kXMax)>(x_);
     trig();
     return ch_;
   }
   /// sin(phi/2) / phi
   S half_sinc() {
-    if (xv_ < lim_.half_sinc) return series<kHalfSinc>(x_);
+    if (xv_ < lim_.half_sinc) return series<kHalfSinc, series_terms<V>(kHalfSinc, kXMax)>(x_);
     trig();
     return sh_ / phi_;
   }
 
  private:
-  const S& a2() {
+  [[gnu::always_inline]] const S& a2() {
     remainders();
     return a2_;
   }
-  const S& b2() {
+  [[gnu::always_inline]] const S& b2() {
     remainders();
     return b2_;
   }
-  void remainders() {
+  [[gnu::always_inline]] void remainders() {
     if (have_remainders_) return;
-    a2_ = series<kA2>(x_);
-    b2_ = series<kB2>(x_);
+    // Both with the terms the longer needs on [0, kCoefficientXMax] (one more than the other at
+    // most); for a plain floating-point S in one packed evaluation.
+    constexpr std::size_t n =
+        std::max(series_terms<V>(kA2, kCoefficientXMax), series_terms<V>(kB2, kCoefficientXMax));
+    if constexpr (std::is_floating_point_v<S>) {
+      using A = Eigen::Array<S, 2, 1>;
+      const S x2 = x_ * x_;
+      const S x4 = x2 * x2;
+      const A xp[4] = {A::Constant(x_), A::Constant(x2), A::Constant(x4), A::Constant(x4 * x4)};
+      const A r = estrin2<kA2, kB2, 0, n>(xp);
+      a2_ = r(0);
+      b2_ = r(1);
+    } else {
+      a2_ = series<kA2, n>(x_);
+      b2_ = series<kB2, n>(x_);
+    }
     have_remainders_ = true;
   }
-  void trig() {
+  [[gnu::always_inline]] void trig() {
     if (have_trig_) return;
     using std::cos;
     using std::sin;
@@ -348,20 +393,40 @@ struct RotationVector {
     Coords<S> v;
     S x, sinc, a, b, c1, c2, d;
   };
-  template <class S> [[nodiscard]] static Precomputed<S> precompute(const Coords<S>& v) {
+  template <class S>
+  [[nodiscard, gnu::always_inline]] static Precomputed<S> precompute(const Coords<S>& v) {
     Precomputed<S> p;
     p.v = v;
     p.x = v.squaredNorm();
     detail::rotation_vector::PhiFunctions<S> f(p.x);
+    // Inline, the series (every canonical v, phi <= pi, and a margin) without a branch left in
+    // them; the closed forms of the rare non-canonical v out of line.
+    if (f.uses_series()) [[likely]] {
+      coefficients(f, p);
+    } else {
+      coefficients_closed(f, p);
+    }
+    return p;
+  }
+
+ private:
+  template <class S>
+  [[gnu::always_inline]] static void coefficients(detail::rotation_vector::PhiFunctions<S>& f,
+                                                  Precomputed<S>& p) {
     p.sinc = f.sinc();
     p.a = f.a();
     p.b = f.b();
     p.c1 = f.c1();
     p.c2 = f.c2();
     p.d = f.d();
-    return p;
+  }
+  template <class S>
+  [[gnu::noinline, gnu::cold]] static void coefficients_closed(
+      detail::rotation_vector::PhiFunctions<S>& f, Precomputed<S>& p) {
+    coefficients(f, p);
   }
 
+ public:
   /// R = exp(S(v)) = I + (sin phi / phi) S(v) + a S(v)^2 = (1 - a v.v) I + a v v^T +
   /// (sin phi / phi) S(v)   (body -> inertial; Eq. 1.1).
   template <class S> [[nodiscard]] static Matrix3<S> rotation(const Precomputed<S>& pre) {
@@ -404,7 +469,8 @@ struct RotationVector {
 
   /// omega = G vdot = vdot - a v x vdot + b v x (v x vdot)   (Eq. 1.5).
   template <class S>
-  [[nodiscard]] static Vector3<S> omega(const Precomputed<S>& pre, const Coords<S>& vdot) {
+  [[nodiscard, gnu::always_inline]] static Vector3<S> omega(const Precomputed<S>& pre,
+                                                            const Coords<S>& vdot) {
     const Vector3<S> u = pre.v.cross(vdot);
     const Vector3<S> vu = pre.v.cross(u);
     return vdot - pre.a * u + pre.b * vu;
@@ -418,7 +484,8 @@ struct RotationVector {
   /// Gdot vdot = -adot v x vdot + bdot v x (v x vdot) + b vdot x (v x vdot), with
   /// adot = (v.vdot) c1 and bdot = (v.vdot) c2   (Eq. 1.10).
   template <class S>
-  [[nodiscard]] static Vector3<S> Gdot_thetadot(const Precomputed<S>& pre, const Coords<S>& vdot) {
+  [[nodiscard, gnu::always_inline]] static Vector3<S> Gdot_thetadot(const Precomputed<S>& pre,
+                                                                    const Coords<S>& vdot) {
     const S vvd = pre.v.dot(vdot);
     const S k1 = -vvd * pre.c1;
     const S k2 = vvd * pre.c2;
@@ -436,7 +503,8 @@ struct RotationVector {
   /// vdot = G^-1 omega = omega + 1/2 v x omega + d v x (v x omega).
   /// \warning Not finite at phi = 2 pi k, k >= 1 (the singular attitudes of the chart).
   template <class S>
-  [[nodiscard]] static Coords<S> thetadot(const Precomputed<S>& pre, const Vector3<S>& omega) {
+  [[nodiscard, gnu::always_inline]] static Coords<S> thetadot(const Precomputed<S>& pre,
+                                                              const Vector3<S>& omega) {
     const Vector3<S> u = pre.v.cross(omega);
     const Vector3<S> vu = pre.v.cross(u);
     return omega + S(0.5) * u + pre.d * vu;
@@ -449,8 +517,9 @@ struct RotationVector {
 
   /// vddot = G^-1 (alpha - Gdot vdot)   (Eq. 1.10 solved for the parameter accelerations).
   template <class S>
-  [[nodiscard]] static Coords<S> thetaddot(const Precomputed<S>& pre, const Coords<S>& vdot,
-                                           const Vector3<S>& alpha) {
+  [[nodiscard, gnu::always_inline]] static Coords<S> thetaddot(const Precomputed<S>& pre,
+                                                               const Coords<S>& vdot,
+                                                               const Vector3<S>& alpha) {
     return thetadot(pre, Vector3<S>(alpha - Gdot_thetadot(pre, vdot)));
   }
   template <class S>
