@@ -257,6 +257,44 @@ template <class V> [[nodiscard]] const Limits<V>& limits() {
   return l;
 }
 
+/// A2 and B2 at x, each with the terms the longer needs on [0, kCoefficientXMax] (one more than
+/// the other at most); for a plain floating-point S in one packed evaluation.
+template <class S> [[gnu::always_inline]] inline void remainders(const S& x, S& a2, S& b2) {
+  using V = decltype(value(std::declval<S>()));
+  constexpr std::size_t n =
+      std::max(series_terms<V>(kA2, kCoefficientXMax), series_terms<V>(kB2, kCoefficientXMax));
+  if constexpr (std::is_floating_point_v<S>) {
+    using A = Eigen::Array<S, 2, 1>;
+    const S x2 = x * x;
+    const S x4 = x2 * x2;
+    const A xp[4] = {A::Constant(x), A::Constant(x2), A::Constant(x4), A::Constant(x4 * x4)};
+    const A r = estrin2<kA2, kB2, 0, n>(xp);
+    a2 = r(0);
+    b2 = r(1);
+  } else {
+    a2 = series<kA2, n>(x);
+    b2 = series<kB2, n>(x);
+  }
+}
+
+/// The coefficient functions below the threshold, from x, A2 and B2 (see PhiFunctions).
+template <class S> struct SeriesCoefficients { S sinc, a, b, c1, c2, d; };
+
+template <class S>
+[[nodiscard, gnu::always_inline]] inline SeriesCoefficients<S> from_remainders(const S& x,
+                                                                               const S& a2,
+                                                                               const S& b2) {
+  using V = decltype(value(std::declval<S>()));
+  SeriesCoefficients<S> c;
+  c.a = S(0.5) - x * a2;
+  c.b = S(V(1) / V(6)) - x * b2;
+  c.sinc = S(1) - x * c.b;
+  c.c1 = S(2) * a2 - c.b;
+  c.c2 = S(3) * b2 - a2;
+  c.d = -c.c1 / (S(2) * c.a);  // = (b - 2 A2) / (2 a); one division
+  return c;
+}
+
 /// The coefficient functions of the file comment at x = phi^2 = v.v. Below the threshold
 /// (x < limits().series) all follow from two series, A2 = (1/2 - a) / x and B2 = (1/6 - b) / x
 /// (no sqrt, so AD derivatives stay finite at v = 0), without cancellation:
@@ -277,40 +315,38 @@ template <class S> class PhiFunctions {
   [[nodiscard]] bool uses_series() const { return series_; }
 
   /// sin(phi) / phi
-  [[gnu::always_inline]] S sinc() {
-    if (series_) return S(1) - x_ * b();
+  S sinc() {
+    if (series_) return coefficients().sinc;
     trig();
     return s_ / phi_;
   }
   /// a = (1 - cos phi) / phi^2, as 2 sin^2(phi/2) / phi^2 (no cancellation).
-  [[gnu::always_inline]] S a() {
-    if (series_) return S(0.5) - x_ * a2();
+  S a() {
+    if (series_) return coefficients().a;
     trig();
     return S(2) * sh_ * sh_ / x_;
   }
   /// b = (phi - sin phi) / phi^3
-  [[gnu::always_inline]] S b() {
-    if (series_) return S(V(1) / V(6)) - x_ * b2();
+  S b() {
+    if (series_) return coefficients().b;
     trig();
     return (phi_ - s_) / (x_ * phi_);
   }
   /// d = 1/phi^2 - cos(phi/2) / (2 phi sin(phi/2)) (regular at phi = pi, singular at 2 pi).
-  [[gnu::always_inline]] S d() {
-    if (series_) {
-      return (b() - S(2) * a2()) / (S(2) * a());  // one division
-    }
+  S d() {
+    if (series_) return coefficients().d;
     trig();
     return (S(2) * sh_ - phi_ * ch_) / (S(2) * x_ * sh_);  // one division
   }
   /// c1 = (phi sin phi - 2 (1 - cos phi)) / phi^4
-  [[gnu::always_inline]] S c1() {
-    if (series_) return S(2) * a2() - b();
+  S c1() {
+    if (series_) return coefficients().c1;
     trig();
     return (phi_ * s_ - S(4) * sh_ * sh_) / (x_ * x_);
   }
   /// c2 = ((1 - cos phi) phi - 3 (phi - sin phi)) / phi^5
-  [[gnu::always_inline]] S c2() {
-    if (series_) return S(3) * b2() - a2();
+  S c2() {
+    if (series_) return coefficients().c2;
     trig();
     return (S(2) * sh_ * sh_ * phi_ - S(3) * (phi_ - s_)) / (x_ * x_ * phi_);
   }
@@ -328,35 +364,16 @@ template <class S> class PhiFunctions {
   }
 
  private:
-  [[gnu::always_inline]] const S& a2() {
-    remainders();
-    return a2_;
-  }
-  [[gnu::always_inline]] const S& b2() {
-    remainders();
-    return b2_;
-  }
-  [[gnu::always_inline]] void remainders() {
-    if (have_remainders_) return;
-    // Both with the terms the longer needs on [0, kCoefficientXMax] (one more than the other at
-    // most); for a plain floating-point S in one packed evaluation.
-    constexpr std::size_t n =
-        std::max(series_terms<V>(kA2, kCoefficientXMax), series_terms<V>(kB2, kCoefficientXMax));
-    if constexpr (std::is_floating_point_v<S>) {
-      using A = Eigen::Array<S, 2, 1>;
-      const S x2 = x_ * x_;
-      const S x4 = x2 * x2;
-      const A xp[4] = {A::Constant(x_), A::Constant(x2), A::Constant(x4), A::Constant(x4 * x4)};
-      const A r = estrin2<kA2, kB2, 0, n>(xp);
-      a2_ = r(0);
-      b2_ = r(1);
-    } else {
-      a2_ = series<kA2, n>(x_);
-      b2_ = series<kB2, n>(x_);
+  const SeriesCoefficients<S>& coefficients() {
+    if (!have_coefficients_) {
+      S a2, b2;
+      remainders(x_, a2, b2);
+      coefficients_ = from_remainders(x_, a2, b2);
+      have_coefficients_ = true;
     }
-    have_remainders_ = true;
+    return coefficients_;
   }
-  [[gnu::always_inline]] void trig() {
+  void trig() {
     if (have_trig_) return;
     using std::cos;
     using std::sin;
@@ -374,8 +391,8 @@ template <class S> class PhiFunctions {
   V xv_;
   const Limits<V>& lim_;
   bool have_trig_ = false;
-  bool have_remainders_ = false;
-  S a2_, b2_;
+  bool have_coefficients_ = false;
+  SeriesCoefficients<S> coefficients_;
   S phi_, s_, sh_, ch_;
 };
 
@@ -398,21 +415,35 @@ struct RotationVector {
     Precomputed<S> p;
     p.v = v;
     p.x = v.squaredNorm();
-    detail::rotation_vector::PhiFunctions<S> f(p.x);
-    // Inline, the series (every canonical v, phi <= pi, and a margin) without a branch left in
-    // them; the closed forms of the rare non-canonical v out of line.
-    if (f.uses_series()) [[likely]] {
-      coefficients(f, p);
+    if constexpr (std::is_floating_point_v<S>) {
+      // Inline for double and float, the series of every canonical v (phi <= pi, and a margin);
+      // the closed forms of the rare non-canonical v out of line. AD scalars take the general
+      // path, not forced inline (their code is many times larger).
+      if (p.x < detail::rotation_vector::limits<S>().series) [[likely]] {
+        S a2, b2;
+        detail::rotation_vector::remainders(p.x, a2, b2);
+        set(p, detail::rotation_vector::from_remainders(p.x, a2, b2));
+      } else {
+        coefficients_cold(p);
+      }
     } else {
-      coefficients_closed(f, p);
+      coefficients(p);
     }
     return p;
   }
 
  private:
-  template <class S>
-  [[gnu::always_inline]] static void coefficients(detail::rotation_vector::PhiFunctions<S>& f,
-                                                  Precomputed<S>& p) {
+  template <class S, class C>
+  [[gnu::always_inline]] static void set(Precomputed<S>& p, const C& c) {
+    p.sinc = c.sinc;
+    p.a = c.a;
+    p.b = c.b;
+    p.c1 = c.c1;
+    p.c2 = c.c2;
+    p.d = c.d;
+  }
+  template <class S> static void coefficients(Precomputed<S>& p) {
+    detail::rotation_vector::PhiFunctions<S> f(p.x);
     p.sinc = f.sinc();
     p.a = f.a();
     p.b = f.b();
@@ -420,10 +451,8 @@ struct RotationVector {
     p.c2 = f.c2();
     p.d = f.d();
   }
-  template <class S>
-  [[gnu::noinline, gnu::cold]] static void coefficients_closed(
-      detail::rotation_vector::PhiFunctions<S>& f, Precomputed<S>& p) {
-    coefficients(f, p);
+  template <class S> [[gnu::noinline, gnu::cold]] static void coefficients_cold(Precomputed<S>& p) {
+    coefficients(p);
   }
 
  public:
