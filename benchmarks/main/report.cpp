@@ -9,10 +9,10 @@
 //               the log-log slope;
 //   (d)         runs per second of an ensemble against threads and MPI processes, the per-run cost
 //               against serial loops, memory and allocations per run, against their targets;
-//   (e)         per mechanism (IFToMM A01, A03, A04) and tumble integrator, the time to reach an
-//   error of
-//               1e-3, 1e-6, 1e-9 in the problem's own measure (time_at, as in (b)), the best error
-//               and the constraint residual |C| at the end of the most accurate run.
+//   (e)         per mechanism (IFToMM A01, A03, A04) and method (tumble's integrators, MuJoCo's
+//               RK4 when installed), the time to reach an error of 1e-3, 1e-6, 1e-9 in the
+//               problem's own measure (time_at, as in (b)), the best error and the constraint
+//               residual |C| at the end of the most accurate run.
 
 #include <algorithm>
 #include <cmath>
@@ -395,7 +395,8 @@ const std::vector<double> kMechanismErrors = {1e-3, 1e-6, 1e-9};
 }  // namespace
 
 std::string mechanism_table_header() {
-  std::string s = "(e) mechanisms: work precision on IFToMM problems, tumble's integrators\n  ";
+  std::string s =
+      "(e) mechanisms: work precision on IFToMM problems, tumble's integrators and peers\n  ";
   s += pad("method", 26);
   for (const char* e : {"1e-3", "1e-6", "1e-9", "best", "|C| end", "runs"}) {
     s += lpad(e, 9);
@@ -442,7 +443,10 @@ std::string mechanism_table(const MechanismResult& r) {
     line += lpad(std::to_string(ok) + "/" + std::to_string(by_method[label].size()), 9);
     s << line << "\n";
     if (best != nullptr && !best->note.empty()) {
-      s << wrap("    (at tol " + sci(best->tol) + ": " + best->note + ")", "     ");
+      // a peer's fixed-step rows have no tolerance: their note gives the step
+      s << wrap("    (at " + (std::isnan(best->tol) ? "" : "tol " + sci(best->tol) + ": ") +
+                    best->note + ")",
+                "     ");
     }
   }
   return s.str();
@@ -455,10 +459,10 @@ std::string mechanism_table_footer(TimeBase clock) {
          "max |C| at\n"
          "   the end of that run; runs: those that finished of the ladder (a method is not run at "
          "tighter\n"
-         "   tolerances after it failed). Peers (MuJoCo, Exudyn) are not run on these problems "
-         "yet. "
-         "Every\n"
-         "   run: mechanism_<problem>.csv)\n";
+         "   tolerances after it failed). MuJoCo's rows (when installed) sweep RK4's fixed "
+         "step, not a\n"
+         "   tolerance: every rung is run, and its best run's step is given below it. Every run:\n"
+         "   mechanism_<problem>.csv)\n";
 }
 
 std::string scaling_table(const std::vector<ScalingRow>& rows) {

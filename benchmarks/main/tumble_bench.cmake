@@ -77,7 +77,8 @@ if(TARGET tumble::odeint)
     work_precision/tumble_d.cpp   # method: tumble's scenes under OdeintIntegrator
     mechanisms/pendulum.cpp       # mechanism: IFToMM A01, the simple pendulum
     mechanisms/andrews.cpp        # mechanism: IFToMM A03, Andrews' squeezing mechanism
-    mechanisms/bricard.cpp)       # mechanism: IFToMM A04, Bricard's mechanism
+    mechanisms/bricard.cpp        # mechanism: IFToMM A04, Bricard's mechanism
+    peers/mujoco_mechanisms.cpp)  # mechanisms: MuJoCo's RK4 on them (when installed)
   target_link_libraries(tumble_bench PRIVATE tumble::odeint)
   target_compile_definitions(tumble_bench PRIVATE TUMBLE_BENCH_HAVE_TUMBLE_ODEINT=1)
 else()
@@ -144,8 +145,8 @@ target_compile_definitions(tumble_bench PRIVATE
   "TUMBLE_BENCH_CXX_FLAGS=\"${_tumble_wp_flags}\"")
 
 if(TUMBLE_BENCH_HAVE_MUJOCO AND TARGET tumble_bench_mujoco)
-  set_source_files_properties(peers/mujoco_work_precision.cpp PROPERTIES
-    COMPILE_DEFINITIONS TUMBLE_BENCH_HAVE_MUJOCO=1)
+  set_source_files_properties(peers/mujoco_work_precision.cpp peers/mujoco_mechanisms.cpp
+    PROPERTIES COMPILE_DEFINITIONS TUMBLE_BENCH_HAVE_MUJOCO=1)
   target_link_libraries(tumble_bench PRIVATE tumble_bench_mujoco)
   message(STATUS "tumble_bench: MuJoCo's RK4 is one of the references")
 endif()

@@ -8,10 +8,15 @@
 // The Test Set's published reference (RADAU5) is itself 1.1e-9 rad off in beta (reported beside
 // the table): errors below that are measured against the second model only.
 
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "common/format.hpp"
 #include "mechanisms/mechanisms.hpp"
@@ -25,6 +30,47 @@
 #include "joint/andrews_reference.hpp"
 
 namespace tumble::bench {
+namespace {
+
+/// The mechanism as the peers build it (mechanisms.hpp, PlanarLinkage): the example's links as a
+/// tree from the ground (O-crank-rod FE, B-triangle, A-link AG-rod EG, A-link AH-rod EH) and the
+/// three hinges at E that close its loops; the points from the Test Set's data, the centroids
+/// from the example's scene at the start.
+PlanarLinkage peer_linkage(const andrews::Andrews<>& m) {
+  using Eigen::Vector2d;
+  namespace a = andrews;
+  const a::Angles angle = a::absolute(a::kStart);
+  const auto turn = [&](int i, double x, double y) {
+    return Vector2d(std::cos(angle[i]) * x - std::sin(angle[i]) * y,
+                    std::sin(angle[i]) * x + std::cos(angle[i]) * y);
+  };
+  const Vector2d O(0, 0), A(a::xa, a::ya), B(a::xb, a::yb), C(a::xc, a::yc);
+  const Vector2d F = turn(0, a::rr, 0), E = F + turn(1, -a::d, 0);
+  const Vector2d G = A + turn(4, a::zt, 0), H = A + turn(6, 0, -a::u);
+  const std::array<int, 7> parent{-1, 0, -1, 4, -1, 6, -1};
+  const std::array<Vector2d, 7> hinge{O, F, B, G, A, H, A};
+  const SceneState s0 = m.scene.initial_state();
+  PlanarLinkage l;
+  for (std::size_t i = 0; i < 7; ++i) {
+    l.links.push_back({.parent = parent[i],
+                       .hinge = hinge[i],
+                       .centroid = position(m.scene, m.links[i], s0).head<2>(),
+                       .angle = angle[i],
+                       .mass = a::kMass[i],
+                       .inertia = a::kInertia[i]});
+  }
+  l.loops = {{.a = 1, .b = 2, .at = E}, {.a = 1, .b = 3, .at = E}, {.a = 1, .b = 5, .at = E}};
+  l.spring_link = 2;
+  l.spring_on_link = B + turn(2, a::sd, -a::sc);  // D
+  l.spring_on_ground = C;
+  l.stiffness = a::c0;
+  l.rest_length = a::l0;
+  l.motor_link = 0;
+  l.torque = a::mom;
+  return l;
+}
+
+}  // namespace
 
 MechanismResult run_mechanism_a03(const MechanismPlan& plan, const std::function<void()>& step) {
   const Stopwatch reference_watch;
@@ -65,6 +111,16 @@ MechanismResult run_mechanism_a03(const MechanismPlan& plan, const std::function
                 sci(static_cast<double>(closure)) + "); the Test Set's RADAU5 reference is " +
                 sci(andrews::mixed_error(andrews::kEnd, q_ref)) + " from it";
   r.rows = mechanism_sweep(plan, m.scene, times, record, measure, step);
+  // MuJoCo, when installed: the same output times, the links' absolute angles at the last one
+  // measured by the same mixed measure against the same q_ref.
+  const auto peer_measure = [&](const std::vector<double>& angles) {
+    andrews::Angles last{};
+    std::copy(angles.begin(), angles.end(), last.begin());
+    return andrews::mixed_error(andrews::relative(last), q_ref);
+  };
+  const std::vector<MechanismRow> peer =
+      mujoco_a03_rows(peer_linkage(m), times, peer_measure, plan.timing);
+  r.rows.insert(r.rows.end(), peer.begin(), peer.end());
   return r;
 }
 

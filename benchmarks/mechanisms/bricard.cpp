@@ -75,6 +75,9 @@ MechanismResult run_mechanism_a04(const MechanismPlan& plan, const std::function
                 duration(reference_seconds) + "; the twin at 1e-12 is " + sci(uncertainty) +
                 " m from it: errors near that are not resolved";
   r.rows = mechanism_sweep(plan, six.scene, times, record, measure, step);
+  // MuJoCo, when installed: the same output times, measured by the same `p3`.
+  const std::vector<MechanismRow> peer = mujoco_a04_rows(times, p3, plan.timing);
+  r.rows.insert(r.rows.end(), peer.begin(), peer.end());
   return r;
 }
 

@@ -18,13 +18,17 @@
 // (main/report.cpp, mechanism_table) reads the time to reach 1e-3, 1e-6, 1e-9 off each method's
 // ladder with the same interpolation as the single-body tables (time_at).
 //
-// Peers (MuJoCo, Exudyn, ...) on the same problems are not run yet: their rows would be added to
-// MechanismResult::rows by a runner of their own (see the HOOK in mechanisms/study.cpp).
+// Peers: MuJoCo's fixed-step RK4 (peers/mujoco_mechanisms.cpp, when installed) runs each problem
+// from an MJCF model of its own, over the same output times, and is measured by the same code
+// against the same reference (the problem's .cpp hands it both, see the declarations at the end);
+// its rows join MechanismResult::rows with the peer's name as the method. Exudyn is not run yet.
 
 #include <functional>
 #include <limits>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "common/bench.hpp"
 
@@ -79,5 +83,50 @@ std::vector<double> mechanism_tolerances(bool full);
 MechanismResult run_mechanism_a01(const MechanismPlan& plan, const std::function<void()>& step);
 MechanismResult run_mechanism_a03(const MechanismPlan& plan, const std::function<void()>& step);
 MechanismResult run_mechanism_a04(const MechanismPlan& plan, const std::function<void()>& step);
+
+// ---- peers (peers/mujoco_mechanisms.cpp): no rows when MuJoCo is not installed -------------
+
+class PointTrackError;  // mechanisms/track.hpp
+
+/// A planar linkage of hinges about z as the peers build it (A03, filled by mechanisms/andrews.cpp
+/// from the example's data): an open tree of links from the ground, the hinges that close its
+/// loops, a spring to the ground and a constant torque. Positions are in the world (x, y) in the
+/// starting configuration, in which the mechanism is at rest.
+struct PlanarLinkage {
+  struct Link {
+    int parent = -1;           ///< the link it hangs from in the tree (its index); -1: ground
+    Eigen::Vector2d hinge;     ///< its hinge to the parent (m)
+    Eigen::Vector2d centroid;  ///< (m)
+    double angle = 0;          ///< its absolute angle about z at the start (rad)
+    double mass = 0;           ///< kg
+    double inertia = 0;        ///< about z at the centroid (kg m^2)
+  };
+  struct Loop {  ///< a hinge closing a loop between links a and b (b = -1: the ground)
+    int a = 0, b = 0;
+    Eigen::Vector2d at;  ///< (m)
+  };
+  std::vector<Link> links;
+  std::vector<Loop> loops;
+  int spring_link = 0;  ///< a linear spring from a point of this link to a point of the ground
+  Eigen::Vector2d spring_on_link, spring_on_ground;  ///< (m)
+  double stiffness = 0, rest_length = 0;             ///< N/m, m
+  int motor_link = 0;                                ///< a constant torque about z on this link
+  double torque = 0;                                 ///< N m
+};
+
+/// MuJoCo's fixed-step RK4 (mj_step, integrator="RK4") over a ladder of steps per output
+/// interval, each run timed as tumble's are (best of timing.reps, the model's construction not
+/// timed) and measured by the problem's own measure:
+/// A01: the bob's track at `times`, measured by `bob` (its closed-form reference);
+std::vector<MechanismRow> mujoco_a01_rows(const std::vector<double>& times, PointTrackError& bob,
+                                          const Timing& timing);
+/// A04: P3's track at `times`, measured by `p3` (the twin's reference);
+std::vector<MechanismRow> mujoco_a04_rows(const std::vector<double>& times, PointTrackError& p3,
+                                          const Timing& timing);
+/// A03: the linkage `m` over `times`; `measure` takes the links' absolute angles at the last
+/// output (followed over the turns) and gives the problem's error.
+std::vector<MechanismRow> mujoco_a03_rows(
+    const PlanarLinkage& m, const std::vector<double>& times,
+    const std::function<double(const std::vector<double>& angles)>& measure, const Timing& timing);
 
 }  // namespace tumble::bench

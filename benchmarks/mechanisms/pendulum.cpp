@@ -57,6 +57,9 @@ MechanismResult run_mechanism_a01(const MechanismPlan& plan, const std::function
   r.measure = "max |r - r_exact| of the bob over 40 outputs, every 0.25 s (m)";
   r.reference = "closed form, theta(t) = 2 asin(k sn(K - w0 t | k^2))";
   r.rows = mechanism_sweep(plan, scene, times, record, measure, step);
+  // MuJoCo, when installed: the same output times, measured by the same `bob`.
+  const std::vector<MechanismRow> peer = mujoco_a01_rows(times, bob, plan.timing);
+  r.rows.insert(r.rows.end(), peer.begin(), peer.end());
   return r;
 }
 

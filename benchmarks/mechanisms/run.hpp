@@ -5,19 +5,15 @@
 // times, best of Timing::reps; the observer records what the problem's error measure needs (the
 // error itself is computed after the run, outside the timing).
 
-#include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <exception>
-#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "common/bench.hpp"
 #include "mechanisms/mechanisms.hpp"
+#include "mechanisms/track.hpp"  // PointTrackError, the measure of A01 and A04
 #include "tumble/integrate.hpp"
 
 namespace tumble::bench {
@@ -61,37 +57,6 @@ void timed_mechanism_run(const SceneT& scene, typename I::Options options,
   }
   finish_timing(run, seconds);
 }
-
-/// The error measure of a point's track (A01's bob, A04's P3): record(k, p) at output k, then
-/// measure(), the largest distance from the reference over the outputs, NaN when an output was
-/// not recorded (as A03's measure); it clears the track for the next run.
-class PointTrackError {
- public:
-  explicit PointTrackError(std::vector<Eigen::Vector3d> reference)
-      : reference_(std::move(reference)), track_(reference_.size(), missing()) {}
-
-  void record(std::size_t k, const Eigen::Vector3d& p) { track_[k] = p; }
-
-  double measure() {
-    double err = 0;
-    for (std::size_t k = 0; k < reference_.size(); ++k) {
-      const double d = (track_[k] - reference_[k]).norm();
-      if (std::isnan(d)) {  // an output not recorded
-        err = d;
-        break;
-      }
-      err = std::max(err, d);
-    }
-    std::fill(track_.begin(), track_.end(), missing());
-    return err;
-  }
-
- private:
-  static Eigen::Vector3d missing() {
-    return Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  }
-  std::vector<Eigen::Vector3d> reference_, track_;
-};
 
 /// Every method of the plan at every tolerance on `scene`: `record` as above, `measure()` the
 /// error of the run just made (called after each tolerance's runs when they succeeded).

@@ -22,10 +22,10 @@ const char* mechanism_method_label(MechanismMethod m) {
 }
 
 std::vector<MechanismProblem> mechanism_problems() {
-  // HOOK for peers: a peer's runs of the same problem (MuJoCo, Exudyn) would append rows to the
-  // MechanismResult with the peer's name as `method`, the same tolerances (or its step sizes)
-  // and output times and the same error measure; the table and the CSV take them as they are.
-  // None is run yet.
+  // HOOK for peers: a peer's runs of the same problem append rows to the MechanismResult with
+  // the peer's name as `method`, the same output times and the same error measure (the problem's
+  // .cpp hands them over); the table and the CSV take them as they are. MuJoCo's RK4 does so
+  // (peers/mujoco_mechanisms.cpp, when installed); Exudyn is not run yet.
 #if TUMBLE_BENCH_HAVE_TUMBLE_ODEINT
   return {{"a01", &run_mechanism_a01}, {"a03", &run_mechanism_a03}, {"a04", &run_mechanism_a04}};
 #else

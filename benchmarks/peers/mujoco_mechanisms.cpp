@@ -1,0 +1,387 @@
+// tumble_bench, study (e): MuJoCo's fixed-step RK4 (mj_step with integrator="RK4") on the IFToMM
+// mechanisms, when MuJoCo is installed (`pip install mujoco`; found by peers/peers.cmake, and
+// main/tumble_bench.cmake defines TUMBLE_BENCH_HAVE_MUJOCO for this file only). Without it the
+// functions below return no rows.
+//
+// Each problem is an MJCF model written as a MuJoCo user writes it: bodies with an <inertial>
+// element and no geoms (no collision work), an open tree of hinge joints (MuJoCo's joint
+// coordinates), and, where the mechanism has closed loops, <connect> equality constraints that
+// close them. MuJoCo's equality constraints are soft by design (solref, solimp: a spring-damper
+// in constraint space, solved with the rest of the constraint forces); each closed loop runs
+// twice, with MuJoCo's defaults and with the stiffest setting MuJoCo allows at the step h,
+// solref = (2 h, 1) and solimp = (0.9999, 0.9999, ...) (Softness below). The models:
+//   A01  one hinge about z at the origin, the bob a 1 kg body at (1, 0, 0) with a negligible
+//        rotational inertia (1e-12 kg m^2: a point mass, as the reference is; tumble's ball of
+//        4e-5 kg m^2 hangs on a bar with spherical ends and does not turn, while a hinge would
+//        turn it and add its inertia to the bar's, 8.7e-4 m off the closed form after 10 s);
+//   A04  five hinges from the ground along the cube's edges (as examples/bricard.cpp), the rods
+//        1 kg, 1 m, 0.1 m square, and the sixth hinge, at P5, closed by two <connect>s (P5 and
+//        a point 1 m along its axis: a hinge is two points of its axis);
+//   A03  the links as a tree from the ground, built from the example's data by
+//        mechanisms/andrews.cpp (PlanarLinkage), the three hinges at E that close its loops as
+//        <connect>s, the spring a spatial tendon (stiffness, springlength), the motor a <motor>
+//        actuator whose ctrl, the constant torque, a keyframe sets.
+// The step is swept as the single-body peer sweeps it (peers/mujoco_work_precision.cpp): a fixed
+// number of steps per output interval. A run is timed as that peer times it (common/bench.hpp):
+// the model's compilation and mj_makeData are not timed, mj_resetData is not; the steps and, at
+// each output, mj_kinematics and reading what the problem measures are. After the run, the
+// largest equality-constraint violation (mj_fwdPosition, |efc_pos|) is the row's |C|. A run in
+// which MuJoCo found a bad state (and reset itself, its warning mjWARN_BADQACC) fails.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "common/bench.hpp"
+#include "mechanisms/mechanisms.hpp"
+
+#if defined(TUMBLE_BENCH_HAVE_MUJOCO) && TUMBLE_BENCH_HAVE_MUJOCO
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <exception>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <utility>
+
+#include <Eigen/Core>
+#include <mujoco/mujoco.h>
+
+#include "common/format.hpp"
+#include "mechanisms/track.hpp"
+#include "peers/mujoco_handles.hpp"
+
+namespace tumble::bench {
+namespace {
+
+std::unique_ptr<mjModel, ModelDeleter> load(const std::string& mjcf) {
+  std::array<char, 1000> error{};
+  const std::unique_ptr<mjSpec, SpecDeleter> spec(
+      mj_parseXMLString(mjcf.c_str(), nullptr, error.data(), int(error.size())));
+  std::unique_ptr<mjModel, ModelDeleter> model;
+  if (spec) {
+    model.reset(mj_compile(spec.get(), nullptr));
+    if (!model) {
+      throw std::runtime_error(std::string("MuJoCo could not compile the model: ") +
+                               mjs_getError(spec.get()));
+    }
+  }
+  if (!model) {
+    throw std::runtime_error(std::string("MuJoCo could not load the model: ") + error.data());
+  }
+  return model;
+}
+
+/// The soft constraints' setting of a sweep: MuJoCo's defaults (solref = (0.02 s, 1), solimp =
+/// (0.9, 0.95, 0.001, 0.5, 2)), or the stiffest MuJoCo allows at the step h: the time constant at
+/// the smallest value its documentation calls stable, 2 h (below it, MuJoCo's refsafe raises it
+/// to 2 h anyway), critical damping, and the impedance at its largest value, 0.9999 (mjMAXIMP),
+/// over the whole width (dmin = dmax).
+enum class Softness { defaults, stiffest };
+
+/// A constraint's solref and solimp attributes for `softness` at the step h ("": the defaults).
+std::string soft(Softness softness, double h) {
+  if (softness == Softness::defaults) {
+    return "";
+  }
+  std::ostringstream os;
+  os.precision(17);
+  os << " solref=\"" << 2 * h << " 1\" solimp=\"0.9999 0.9999 0.001 0.5 2\"";
+  return os.str();
+}
+
+const char* label(Softness softness) {
+  return softness == Softness::defaults ? "MuJoCo RK4 (defaults)" : "MuJoCo RK4 (stiffest)";
+}
+
+/// One timed run of `model` over `times`, `substeps` steps per output interval; record(k, model,
+/// data) at the k-th output.
+template <class Record>
+void timed_run(mjModel& model, const std::vector<double>& times, int substeps, const Timing& timing,
+               Record& record, Run& run) {
+  std::vector<double> seconds;
+  try {
+    const std::unique_ptr<mjData, DataDeleter> data(mj_makeData(&model));
+    mjData* d = data.get();
+    do {
+      if (model.nkey > 0) {
+        mj_resetDataKeyframe(&model, d, 0);
+      } else {
+        mj_resetData(&model, d);
+      }
+      const Stopwatch watch;
+      double t = 0;
+      long steps = 0;
+      for (std::size_t k = 0; k < times.size(); ++k) {
+        model.opt.timestep = (times[k] - t) / substeps;
+        for (int i = 0; i < substeps; ++i) {
+          mj_step(&model, d);
+        }
+        steps += substeps;
+        t = times[k];
+        mj_kinematics(&model, d);  // mj_step leaves the kinematics of its last stage
+        record(k, model, *d);
+      }
+      record_time(run, seconds, watch, timing);
+      if (d->warning[mjWARN_BADQACC].number > 0 || d->warning[mjWARN_BADQVEL].number > 0 ||
+          d->warning[mjWARN_BADQPOS].number > 0 ||
+          std::abs(d->time - times.back()) > 1e-6 * times.back()) {
+        throw std::runtime_error("unstable: MuJoCo found a bad state and reset the simulation");
+      }
+      run.steps = steps;
+      run.rhs_evals = 4 * steps;  // RK4: four forward dynamics per step
+      mj_fwdPosition(&model, d);
+      run.constraint_drift = 0;
+      for (int i = 0; i < d->nefc; ++i) {
+        if (d->efc_type[i] == mjCNSTR_EQUALITY) {
+          run.constraint_drift = std::max(run.constraint_drift, std::abs(d->efc_pos[i]));
+        }
+      }
+    } while (another_rep(timing, seconds));
+  } catch (const std::exception& e) {
+    run.ok = false;
+    run.error = e.what();
+  }
+  finish_timing(run, seconds);
+}
+
+/// The sweep: for each number of steps per output interval in `ladder`, the model mjcf(h) (h the
+/// step of the first interval), one timed run, and its error by `measure()`. The models of a
+/// sweep differ in solref only: `record` may keep the ids it looked up in the first.
+template <class Model, class Record, class Measure>
+std::vector<MechanismRow> rk4_sweep(const std::string& method, const Model& mjcf,
+                                    const std::vector<double>& times,
+                                    const std::vector<int>& ladder, const Timing& timing,
+                                    Record record, Measure measure) {
+  std::vector<MechanismRow> rows;
+  for (const int substeps : ladder) {
+    const double h = times.front() / substeps;
+    MechanismRow r;
+    r.method = method;
+    r.tol = std::numeric_limits<double>::quiet_NaN();  // a fixed step, no tolerance
+    r.note = "h = " + sci(h) + " s, " + std::to_string(substeps) + " steps per output";
+    try {
+      const auto model = load(mjcf(h));
+      timed_run(*model, times, substeps, timing, record, r.run);
+    } catch (const std::exception& e) {
+      r.run.ok = false;
+      r.run.error = e.what();
+    }
+    const double error = measure();  // also clears what a failed run recorded
+    if (r.run.ok) {
+      r.error = error;
+    }
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
+/// Steps per output interval, doubling from `from` to `to`.
+std::vector<int> doubling(int from, int to) {
+  std::vector<int> ladder;
+  for (int n = from; n <= to; n *= 2) {
+    ladder.push_back(n);
+  }
+  return ladder;
+}
+
+/// Records the world position of the site named "track" into `track` at each output.
+auto site_recorder(PointTrackError& track) {
+  return [&track, site = -1](std::size_t k, const mjModel& m, const mjData& d) mutable {
+    if (site < 0) {
+      site = mj_name2id(&m, mjOBJ_SITE, "track");
+    }
+    const mjtNum* p = d.site_xpos + 3 * site;
+    track.record(k, Eigen::Vector3d(p[0], p[1], p[2]));
+  };
+}
+
+std::string vec(double x, double y, double z) {
+  std::ostringstream os;
+  os.precision(17);
+  os << x << ' ' << y << ' ' << z;
+  return os.str();
+}
+
+}  // namespace
+
+std::vector<MechanismRow> mujoco_a01_rows(const std::vector<double>& times, PointTrackError& bob,
+                                          const Timing& timing) {
+  const auto mjcf = [](double) {
+    return std::string(
+        "<mujoco model=\"A01\"><option integrator=\"RK4\" gravity=\"0 -9.81 0\"/><worldbody>"
+        "<body name=\"bob\" pos=\"1 0 0\"><joint type=\"hinge\" pos=\"-1 0 0\" axis=\"0 0 1\"/>"
+        "<inertial pos=\"0 0 0\" mass=\"1\" diaginertia=\"1e-12 1e-12 1e-12\"/>"
+        "<site name=\"track\"/></body></worldbody></mujoco>");
+  };
+  return rk4_sweep("MuJoCo RK4", mjcf, times, doubling(2, 1024), timing, site_recorder(bob),
+                   [&] { return bob.measure(); });
+}
+
+std::vector<MechanismRow> mujoco_a04_rows(const std::vector<double>& times, PointTrackError& p3,
+                                          const Timing& timing) {
+  // Rod i runs from P_i to P_i+1 (examples/bricard.cpp); its body frame sits at P_i, parallel to
+  // the world's, its hinge there about the axis perpendicular to both links that meet at P_i.
+  const double m = 1.0, l = 1.0, s = 0.1;
+  const double along = m * s * s / 6, across = m * (l * l + s * s) / 12;
+  struct Rod {
+    const char* pos;         // P_i, in the parent's frame
+    const char* axis;        // the hinge at P_i
+    std::array<int, 3> dir;  // P_i+1 - P_i
+  };
+  const std::array<Rod, 5> rods{{{"0 0 0", "0 1 0", {1, 0, 0}},
+                                 {"1 0 0", "0 0 1", {0, 1, 0}},
+                                 {"0 1 0", "1 0 0", {0, 0, 1}},
+                                 {"0 0 1", "0 1 0", {-1, 0, 0}},
+                                 {"-1 0 0", "0 0 1", {0, -1, 0}}}};
+  std::vector<MechanismRow> rows;
+  for (const Softness softness : {Softness::defaults, Softness::stiffest}) {
+    const auto mjcf = [&](double h) {
+      std::ostringstream os;
+      os << "<mujoco model=\"A04\"><option integrator=\"RK4\" gravity=\"0 -9.81 0\"/><worldbody>";
+      for (std::size_t i = 0; i < rods.size(); ++i) {
+        const auto& d = rods[i].dir;
+        os << "<body name=\"rod" << i << "\" pos=\"" << rods[i].pos
+           << "\"><joint type=\"hinge\" axis=\"" << rods[i].axis << "\"/><inertial pos=\""
+           << vec(0.5 * l * d[0], 0.5 * l * d[1], 0.5 * l * d[2]) << "\" mass=\"" << m
+           << "\" diaginertia=\""
+           << vec(d[0] != 0 ? along : across, d[1] != 0 ? along : across,
+                  d[2] != 0 ? along : across)
+           << "\"/>";
+        if (i == 2) {
+          os << "<site name=\"track\" pos=\"0 0 1\"/>";  // P3, the middle rod's tip
+        }
+      }
+      os << "</body></body></body></body></body></worldbody><equality>";
+      // The hinge at P5 = (0, 0, 1) about x: P5 and P5 + x, in rod4's frame (at P4 = (0, 1, 1)).
+      for (const char* anchor : {"0 -1 0", "1 -1 0"}) {
+        os << "<connect body1=\"rod4\" body2=\"world\" anchor=\"" << anchor << "\""
+           << soft(softness, h) << "/>";
+      }
+      os << "</equality></mujoco>";
+      return os.str();
+    };
+    auto mine = rk4_sweep(label(softness), mjcf, times, doubling(4, 1024), timing,
+                          site_recorder(p3), [&] { return p3.measure(); });
+    rows.insert(rows.end(), mine.begin(), mine.end());
+  }
+  return rows;
+}
+
+std::vector<MechanismRow> mujoco_a03_rows(
+    const PlanarLinkage& m, const std::vector<double>& times,
+    const std::function<double(const std::vector<double>& angles)>& measure, const Timing& timing) {
+  const std::size_t n = m.links.size();
+  // Each link's body frame sits at its hinge to its parent, parallel to the world's (qpos = 0 is
+  // the starting configuration); its absolute angle is its starting angle plus the hinge angles
+  // on its path from the ground.
+  std::vector<double> angles(n, std::numeric_limits<double>::quiet_NaN());
+  const auto mjcf = [&](Softness softness, double h) {
+    std::ostringstream os;
+    os.precision(17);
+    os << "<mujoco model=\"A03\"><option integrator=\"RK4\" gravity=\"0 0 0\"/><worldbody>"
+       << "<site name=\"ground_end\" pos=\""
+       << vec(m.spring_on_ground.x(), m.spring_on_ground.y(), 0) << "\"/>";
+    const std::function<void(int)> body = [&](int i) {
+      const PlanarLinkage::Link& link = m.links[std::size_t(i)];
+      const Eigen::Vector2d at =
+          link.hinge -
+          (link.parent < 0 ? Eigen::Vector2d::Zero() : m.links[std::size_t(link.parent)].hinge);
+      const Eigen::Vector2d c = link.centroid - link.hinge;
+      os << "<body name=\"link" << i << "\" pos=\"" << vec(at.x(), at.y(), 0)
+         << "\"><joint name=\"hinge" << i << "\" type=\"hinge\" axis=\"0 0 1\"/><inertial pos=\""
+         << vec(c.x(), c.y(), 0) << "\" mass=\"" << link.mass << "\" diaginertia=\""
+         << vec(link.inertia, link.inertia, link.inertia) << "\"/>";
+      if (i == m.spring_link) {
+        const Eigen::Vector2d p = m.spring_on_link - link.hinge;
+        os << "<site name=\"link_end\" pos=\"" << vec(p.x(), p.y(), 0) << "\"/>";
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        if (m.links[k].parent == i) {
+          body(int(k));
+        }
+      }
+      os << "</body>";
+    };
+    for (std::size_t k = 0; k < n; ++k) {
+      if (m.links[k].parent < 0) {
+        body(int(k));
+      }
+    }
+    os << "</worldbody><equality>";
+    for (const PlanarLinkage::Loop& loop : m.loops) {
+      const Eigen::Vector2d p = loop.at - m.links[std::size_t(loop.a)].hinge;
+      os << "<connect body1=\"link" << loop.a << "\" body2=\""
+         << (loop.b < 0 ? std::string("world") : "link" + std::to_string(loop.b)) << "\" anchor=\""
+         << vec(p.x(), p.y(), 0) << "\"" << soft(softness, h) << "/>";
+    }
+    os << "</equality><tendon><spatial stiffness=\"" << m.stiffness << "\" springlength=\""
+       << m.rest_length << "\"><site site=\"link_end\"/><site site=\"ground_end\"/></spatial>"
+       << "</tendon><actuator><motor name=\"motor\" joint=\"hinge" << m.motor_link
+       << "\" gear=\"1\"/></actuator><keyframe><key ctrl=\"" << m.torque
+       << "\"/></keyframe></mujoco>";
+    return os.str();
+  };
+  auto record = [&, qpos = std::vector<int>()](std::size_t k, const mjModel& model,
+                                               const mjData& d) mutable {
+    if (k + 1 < times.size()) {
+      return;  // the hinge angles count the turns: only the last output is measured
+    }
+    if (qpos.empty()) {
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::string name = "hinge" + std::to_string(i);
+        qpos.push_back(model.jnt_qposadr[mj_name2id(&model, mjOBJ_JOINT, name.c_str())]);
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      angles[i] = m.links[i].angle;
+      for (int j = int(i); j >= 0; j = m.links[std::size_t(j)].parent) {
+        angles[i] += d.qpos[qpos[std::size_t(j)]];
+      }
+    }
+  };
+  auto measure_run = [&] {
+    const bool reached =
+        std::none_of(angles.begin(), angles.end(), [](double a) { return std::isnan(a); });
+    const double e = reached ? measure(angles) : std::numeric_limits<double>::quiet_NaN();
+    std::fill(angles.begin(), angles.end(), std::numeric_limits<double>::quiet_NaN());
+    return e;
+  };
+  std::vector<MechanismRow> rows;
+  for (const Softness softness : {Softness::defaults, Softness::stiffest}) {
+    auto mine = rk4_sweep(
+        label(softness), [&](double h) { return mjcf(softness, h); }, times, doubling(1, 512),
+        timing, record, measure_run);
+    rows.insert(rows.end(), mine.begin(), mine.end());
+  }
+  return rows;
+}
+
+}  // namespace tumble::bench
+
+#else
+
+namespace tumble::bench {
+
+std::vector<MechanismRow> mujoco_a01_rows(const std::vector<double>& /*times*/,
+                                          PointTrackError& /*bob*/, const Timing& /*timing*/) {
+  return {};
+}
+std::vector<MechanismRow> mujoco_a04_rows(const std::vector<double>& /*times*/,
+                                          PointTrackError& /*p3*/, const Timing& /*timing*/) {
+  return {};
+}
+std::vector<MechanismRow> mujoco_a03_rows(
+    const PlanarLinkage& /*m*/, const std::vector<double>& /*times*/,
+    const std::function<double(const std::vector<double>& angles)>& /*measure*/,
+    const Timing& /*timing*/) {
+  return {};
+}
+
+}  // namespace tumble::bench
+
+#endif
