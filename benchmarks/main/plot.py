@@ -195,7 +195,11 @@ def plot_mechanisms(results):
             if r["ok"] == "1" and err > 0 and math.isfinite(err) and t > 0:
                 lines.setdefault(r["method"], []).append((err, t))
         for index, (method, pts) in enumerate(lines.items()):
-            ax.loglog([p[0] for p in pts], [p[1] for p in pts], **style(method, "tumble", index))
+            peer = method.startswith("MuJoCo")
+            kw = style(method, "peer" if peer else "tumble", index)
+            if peer and "default" in method:  # MuJoCo's two settings apart
+                kw.update(color="gray", marker="o")
+            ax.loglog([p[0] for p in pts], [p[1] for p in pts], **kw)
         for e in TARGET_ERRORS:
             ax.axvline(e, color="lightgray", linewidth=0.8, zorder=0)
         ax.invert_xaxis()
@@ -205,8 +209,8 @@ def plot_mechanisms(results):
         ax.set_ylabel("run time (s)")
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
-    fig.suptitle("(e) mechanisms: work precision of tumble's integrators (peers not run)",
-                 fontsize=10)
+    fig.suptitle("(e) mechanisms: work precision of tumble's integrators"
+                 " (and MuJoCo's RK4, when installed)", fontsize=10)
     fig.tight_layout()
     out = os.path.join(results, "mechanisms.png")
     fig.savefig(out, dpi=110)
