@@ -178,6 +178,25 @@ int freeze_redundant_rows(const SceneT& scene, SceneWorkspace<SceneT>& ws, const
   return freeze_dependent(j);
 }
 
+/// After project_constraints: true when its result shows that the rows retained as independent
+/// (those not frozen as redundant, freeze_redundant_rows) no longer determine the motion, so
+/// that the rows must be decided again at this position. Newton on them did not converge in
+/// kJointProjectionIterations, or the velocities they leave violate some row (the frozen ones
+/// included) by more than kRetainedRowsVelocity relative to the largest body velocity: a solve
+/// on independent rows meets every row to rounding. Bricard's mechanism (A04) meets positions
+/// where the row frozen at the start stops being the redundant one; there the velocity residual
+/// after the projection grew from 1e-15 to 7e-3 within a few steps and the steps stalled
+/// (docs/benchmarks/mechanisms.md, 2026-11-27).
+inline constexpr double kRetainedRowsVelocity = 1e-8;
+inline bool retained_rows_failed(const JointScratch& j, const ConstraintResidual& r,
+                                 int iterations) {
+  if (j.dependent.empty()) {  // nothing frozen: the rows are found by each factorization
+    return false;
+  }
+  const double scale = j.nu.size() > 0 ? std::max(1.0, j.nu.cwiseAbs().maxCoeff()) : 1.0;
+  return iterations >= kJointProjectionIterations || r.velocity > kRetainedRowsVelocity * scale;
+}
+
 /// The projection of the file comment, in place, for the bodies `mobile(id)` allows to move:
 /// Newton until max |C| <= tolerance * length_scale (or max_iterations), then the velocities.
 /// Allocates nothing. Returns the residuals after it and the iterations taken in `iterations`.
