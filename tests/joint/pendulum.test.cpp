@@ -105,7 +105,8 @@ TEMPLATE_LIST_TEST_CASE("mechanism: the pendulum against its closed form", "[joi
                         TUMBLE_TEST_SLICED_NAME(PendulumSlice)) {
   const double theta0 = 2.5;  // rad: far from small oscillations
   // Bounds: the global error of ~7 swings at the local tolerance given (Fehlberg 7(8): about
-  // 1e3 tol; BDF, of order 5 at most: about 1e4 tol), and the drift at the projection's level.
+  // 1e3 tol; BDF, of order 5 at most: 1e4 to 2e5 tol, below), and the drift at the projection's
+  // level.
   SECTION("quasi-velocities, explicit") {
     const Pendulum<TestType, StateForm::quasi_velocities> p(theta0);
     using I = OdeintIntegrator<decltype(p.scene)>;
@@ -117,9 +118,15 @@ TEMPLATE_LIST_TEST_CASE("mechanism: the pendulum against its closed form", "[joi
     CHECK(pendulum_error<I>(p, theta0, 10.0, 1e-12, 1e3) <= 5e-9);
   }
   SECTION("quasi-velocities, CVODE BDF") {
+    // BDF's global error at 1e-11 over the ~7 swings, measured (GCC 12) for EP, ZYX, RV, MRP and
+    // Gibbs: 1.4, 3.2, 1.4, 2.5 and 3.4e-7 rad with CVODE's error estimate left whole in the
+    // hinge's normal directions; 3.8e-7, 1.7e-6, 3.9e-7, 2.5e-7 and 1.6e-7 with it projected
+    // (scene/assembly.hpp, project_error_estimate), in 6-11 % fewer steps. ZYX's pitch passes its
+    // singular value in each swing: each chart switch restarts BDF at order 1, and its error
+    // scatters most (1e-10: 4.6e-7, 1e-11: 1.7e-6, 1e-12: 2.2e-7).
     const Pendulum<TestType, StateForm::quasi_velocities> p(theta0);
     using I = SceneIntegrator<decltype(p.scene)>;
-    CHECK(pendulum_error<I>(p, theta0, 10.0, 1e-11, 3e4) <= 1e-6);
+    CHECK(pendulum_error<I>(p, theta0, 10.0, 1e-11, 3e4) <= 3e-6);
   }
 }
 

@@ -317,19 +317,10 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       y += map(corr_);
     }
     if constexpr (SceneT::has_joints) {
-      int iterations = 0;
-      const auto project = [&] {
-        return detail::project_constraints(
-            *scene_, ws_, y, bases(), detail::kJointProjectionTolerance,
-            detail::kJointProjectionIterations, [](int) { return true; }, iterations);
-      };
-      ConstraintResidual r = project();
-      if (detail::retained_rows_failed(ws_.joints(), r, iterations)) [[unlikely]] {
-        // The rows frozen as redundant at the start no longer leave the others independent
-        // (scene/assembly.hpp): decide them again here, between two steps, and project again.
-        detail::freeze_redundant_rows(*scene_, ws_, y, bases());
-        r = project();
-      }
+      // Where the rows frozen as redundant no longer leave the others independent, they are
+      // decided again here, between two steps (scene/assembly.hpp).
+      bool redecided = false;
+      const ConstraintResidual r = detail::project_mechanism(*scene_, ws_, y, bases(), redecided);
       if (!(r.position <= detail::kJointProjectionFailure)) [[unlikely]] {
         throw ExplicitIntegrationError("tumble::OdeintIntegrator: the projection onto the joints' "
                                        "constraints did not converge (max |C| = " +

@@ -230,24 +230,30 @@ template <class SceneT> class SceneSystem {
   }
 
   /// The Euler parameters' projection, then a mechanism's (scene/assembly.hpp: Newton on the
-  /// positions, the velocities exactly). The error estimate is projected for the quaternions of
-  /// the generalized form only (scene/projection.hpp): left whole in the joints' normal
-  /// directions, it is the larger (safe) estimate.
+  /// positions, the velocities exactly). The error estimate is projected too: for the
+  /// quaternions of the generalized form (scene/projection.hpp) and onto the joints' tangent
+  /// space (scene/assembly.hpp, project_error_estimate), without which BDF's step size collapsed
+  /// on Andrews' mechanism below 1e-10.
   void project(double /*t*/, ConstVectorMap y, VectorMap corr, double /*eps*/, VectorMap err) {
     tumble::project(*scene_, y, corr, err);
     if constexpr (SceneT::has_joints) {
       Eigen::VectorXd& z = ws_.joints().y;
       z = y + corr;
-      int iterations = 0;
-      const ConstraintResidual r = detail::project_constraints(
-          *scene_, ws_, z, bases(), kJointProjectionTolerance, kJointProjectionIterations,
-          [](int) { return true; }, iterations);
+      // Where the rows frozen as redundant no longer leave the others independent, they are
+      // decided again at this trial state (scene/assembly.hpp); they stay so for the steps after
+      // it, accepted or not: which rows are retained does not change the motion on the
+      // constraints, only how well its reactions are conditioned.
+      bool redecided = false;
+      const ConstraintResidual r = project_mechanism(*scene_, ws_, z, bases(), redecided);
       if (!(r.position <= kJointProjectionFailure)) {
         throw RecoverableError("the projection onto the joints' constraints did not converge "
                                "(max |C| = " +
                                format_double(r.position) + ")");
       }
       corr = z - y;
+      if (err.size() > 0) {  // CvodeOptions::project_error: err's normal components removed
+        project_error_estimate(*scene_, ws_, z, err);
+      }
     }
   }
 

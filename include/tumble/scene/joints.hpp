@@ -26,9 +26,9 @@
 // acceleration jumped and the step size collapsed (tests/joint/bricard.test.cpp, A04). With the
 // rows frozen, the retained rows stay independent there, as the same mechanism with its last
 // hinge made a universal joint (29 independent rows, the same motion) shows. Where the rows
-// frozen at the start stop being the redundant ones, the explicit integrator's projection after
-// a step shows it, and it decides them again there, between two steps (assembly.hpp,
-// retained_rows_failed).
+// frozen at the start stop being the redundant ones, the integrators' projection after a step
+// shows it, and they decide them again there (assembly.hpp, retained_rows_failed and
+// project_mechanism).
 //
 // The solve reads the kinematics and wrenches the right-hand side's first two passes left in the
 // workspace (rhs.hpp), and writes lambda there.
