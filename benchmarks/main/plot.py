@@ -64,9 +64,10 @@ def style(method, family, index):
         return dict(color=color, linestyle="--", linewidth=2.0, marker=marker, markersize=4,
                     label=method)
     if family in ("pinocchio", "peer"):
-        mujoco = method.startswith("MuJoCo")
-        return dict(color="black" if mujoco else "tab:brown", linestyle=":", linewidth=2.2,
-                    marker="s" if mujoco else "D", markersize=4, label=method)
+        mujoco, exudyn = method.startswith("MuJoCo"), method.startswith("Exudyn")
+        color = "black" if mujoco else "tab:purple" if exudyn else "tab:brown"
+        return dict(color=color, linestyle=":", linewidth=2.2,
+                    marker="s" if mujoco else "v" if exudyn else "D", markersize=4, label=method)
     if family == "rk4":
         return dict(color="dimgray", linestyle="-.", linewidth=1.8, marker="x", markersize=5,
                     label=method)
@@ -195,10 +196,12 @@ def plot_mechanisms(results):
             if r["ok"] == "1" and err > 0 and math.isfinite(err) and t > 0:
                 lines.setdefault(r["method"], []).append((err, t))
         for index, (method, pts) in enumerate(lines.items()):
-            peer = method.startswith("MuJoCo")
+            peer = method.startswith(("MuJoCo", "Exudyn"))
             kw = style(method, "peer" if peer else "tumble", index)
             if peer and "default" in method:  # MuJoCo's two settings apart
                 kw.update(color="gray", marker="o")
+            if peer and "Trapezoidal" in method:  # Exudyn's two solvers apart
+                kw.update(color="orchid", marker="^")
             ax.loglog([p[0] for p in pts], [p[1] for p in pts], **kw)
         for e in TARGET_ERRORS:
             ax.axvline(e, color="lightgray", linewidth=0.8, zorder=0)
@@ -210,7 +213,8 @@ def plot_mechanisms(results):
         ax.grid(True, which="both", alpha=0.3)
         ax.legend(fontsize=7)
     fig.suptitle("(e) mechanisms: work precision of tumble's integrators"
-                 " (and MuJoCo's RK4, when installed)", fontsize=10)
+                 " (and MuJoCo's RK4 and Exudyn's implicit solvers, when installed)",
+                 fontsize=10)
     fig.tight_layout()
     out = os.path.join(results, "mechanisms.png")
     fig.savefig(out, dpi=110)

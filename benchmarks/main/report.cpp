@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
 #include <fstream>
 #include <limits>
@@ -186,10 +187,18 @@ std::string header_text(const Options& o, const std::filesystem::path& out, int 
     << "  build     " << compiler() << ", " << TUMBLE_BENCH_BUILD_TYPE << " ("
     << TUMBLE_BENCH_CXX_FLAGS << "); SUNDIALS " << SUNDIALS_VERSION << ", Eigen "
     << EIGEN_WORLD_VERSION << '.' << EIGEN_MAJOR_VERSION << '.' << EIGEN_MINOR_VERSION << "\n";
-  if (pinocchio_available() || mujoco_available()) {
-    s << "  peers     " << (pinocchio_available() ? pinocchio_description() : "")
-      << (pinocchio_available() && mujoco_available() ? "; " : "")
-      << (mujoco_available() ? "MuJoCo (mj_step, RK4)" : "") << "\n";
+  std::vector<std::string> peers;
+  if (pinocchio_available()) {
+    peers.push_back(pinocchio_description());
+  }
+  if (mujoco_available()) {
+    peers.push_back("MuJoCo (mj_step, RK4)");
+  }
+  if (exudyn_available()) {
+    peers.push_back("Exudyn (SolveDynamic, implicit; mechanisms only)");
+  }
+  for (std::size_t i = 0; i < peers.size(); ++i) {
+    s << (i == 0 ? "  peers     " : "; ") << peers[i] << (i + 1 == peers.size() ? "\n" : "");
   }
   s << "  timing    " << (o.clock == TimeBase::wall ? "wall clock" : "thread CPU time")
     << ", best of " << o.reps << " runs per setting; this run: about "
@@ -459,9 +468,10 @@ std::string mechanism_table_footer(TimeBase clock) {
          "max |C| at\n"
          "   the end of that run; runs: those that finished of the ladder (a method is not run at "
          "tighter\n"
-         "   tolerances after it failed). MuJoCo's rows (when installed) sweep RK4's fixed "
-         "step, not a\n"
-         "   tolerance: every rung is run, and its best run's step is given below it. Every run:\n"
+         "   tolerances after it failed). MuJoCo's and Exudyn's rows (when installed) sweep a "
+         "fixed step,\n"
+         "   not a tolerance: every rung is run, and its best run's step is given below it. Every "
+         "run:\n"
          "   mechanism_<problem>.csv)\n";
 }
 

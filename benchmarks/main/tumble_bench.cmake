@@ -3,7 +3,8 @@
 #   ./build/benchmarks/tumble_bench            # --full for the complete sweep, --help for options
 # Included by benchmarks/CMakeLists.txt, in its scope, so that tumble_bench is built in
 # build/benchmarks/: it uses the peers' detection (peers/peers.cmake: TUMBLE_BENCH_HAVE_PINOCCHIO,
-# target tumble_bench_pinocchio, and MuJoCo's) and tumble_micro (micro/micro.cmake) when they exist.
+# target tumble_bench_pinocchio, MuJoCo's and Exudyn's) and tumble_micro (micro/micro.cmake) when
+# they exist.
 # Source paths are relative to benchmarks/, one folder per study.
 #
 # The results (CSV, PNG, summary.txt, the raw micro-benchmark output micro.txt/.json) go to ${PROJECT_BINARY_DIR}/benchmark-results unless
@@ -78,7 +79,8 @@ if(TARGET tumble::odeint)
     mechanisms/pendulum.cpp       # mechanism: IFToMM A01, the simple pendulum
     mechanisms/andrews.cpp        # mechanism: IFToMM A03, Andrews' squeezing mechanism
     mechanisms/bricard.cpp        # mechanism: IFToMM A04, Bricard's mechanism
-    peers/mujoco_mechanisms.cpp)  # mechanisms: MuJoCo's RK4 on them (when installed)
+    peers/mujoco_mechanisms.cpp   # mechanisms: MuJoCo's RK4 on them (when installed)
+    peers/exudyn_mechanisms.cpp)  # mechanisms: Exudyn's solvers on them (when installed)
   target_link_libraries(tumble_bench PRIVATE tumble::odeint)
   target_compile_definitions(tumble_bench PRIVATE TUMBLE_BENCH_HAVE_TUMBLE_ODEINT=1)
 else()
@@ -149,6 +151,12 @@ if(TUMBLE_BENCH_HAVE_MUJOCO AND TARGET tumble_bench_mujoco)
     PROPERTIES COMPILE_DEFINITIONS TUMBLE_BENCH_HAVE_MUJOCO=1)
   target_link_libraries(tumble_bench PRIVATE tumble_bench_mujoco)
   message(STATUS "tumble_bench: MuJoCo's RK4 is one of the references")
+endif()
+if(TUMBLE_BENCH_HAVE_EXUDYN)
+  # Study (e) runs peers/exudyn_mechanisms.py with the Python that imports exudyn.
+  set_source_files_properties(peers/exudyn_mechanisms.cpp PROPERTIES COMPILE_DEFINITIONS
+    "TUMBLE_BENCH_EXUDYN_PYTHON=\"${TUMBLE_BENCH_PYTHON}\";TUMBLE_BENCH_EXUDYN_SCRIPT=\"${CMAKE_CURRENT_SOURCE_DIR}/peers/exudyn_mechanisms.py\"")
+  message(STATUS "tumble_bench: Exudyn's implicit solvers run the mechanisms' study (e)")
 endif()
 if(TUMBLE_BENCH_HAVE_PINOCCHIO AND TARGET tumble_bench_pinocchio)
   # Only the Pinocchio translation unit sees its headers (they take a while to compile).

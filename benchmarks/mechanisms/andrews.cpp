@@ -112,15 +112,19 @@ MechanismResult run_mechanism_a03(const MechanismPlan& plan, const std::function
                 sci(andrews::mixed_error(andrews::kEnd, q_ref)) + " from it";
   r.rows = mechanism_sweep(plan, m.scene, times, record, measure, step);
   // MuJoCo, when installed: the same output times, the links' absolute angles at the last one
-  // measured by the same mixed measure against the same q_ref.
+  // measured by the same mixed measure against the same q_ref. Exudyn likewise.
   const auto peer_measure = [&](const std::vector<double>& angles) {
     andrews::Angles last{};
     std::copy(angles.begin(), angles.end(), last.begin());
     return andrews::mixed_error(andrews::relative(last), q_ref);
   };
-  const std::vector<MechanismRow> peer =
-      mujoco_a03_rows(peer_linkage(m), times, peer_measure, plan.timing);
+  const PlanarLinkage linkage = peer_linkage(m);
+  const std::vector<MechanismRow> peer = mujoco_a03_rows(linkage, times, peer_measure, plan.timing);
   r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  // Exudyn, when installed: the same linkage, outputs and measure.
+  const std::vector<MechanismRow> exudyn =
+      exudyn_a03_rows(linkage, times, peer_measure, plan.timing);
+  r.rows.insert(r.rows.end(), exudyn.begin(), exudyn.end());
   return r;
 }
 

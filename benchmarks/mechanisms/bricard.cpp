@@ -29,6 +29,48 @@
 #undef main
 
 namespace tumble::bench {
+namespace {
+
+/// The linkage as the peers build it (mechanisms.hpp, SpatialLinkage), from the example's scene
+/// at the start: each rod's centroid, attitude and mass properties; its ends at -+0.5 m along
+/// its body x (as the example's joints hold them), so P0..P5; the hinge at P_k perpendicular to
+/// the two links that meet there (the ground's link P5 P0 among them); P3 the middle rod's tip.
+SpatialLinkage peer_linkage(const bricard::Bricard<>& six) {
+  using Eigen::Vector3d;
+  const SceneState s0 = six.scene.initial_state();
+  SpatialLinkage l;
+  std::vector<Vector3d> p;  // P0 .. P5
+  for (const auto& rod : six.rods) {
+    const auto& mp = six.scene.body(rod).mass_properties();
+    const Eigen::Matrix3d r = rotation(six.scene, rod, s0);
+    const Vector3d x = position(six.scene, rod, s0);
+    l.bodies.push_back({.centroid = x + r * mp.centroid(),
+                        .rotation = r,
+                        .mass = mp.mass(),
+                        .inertia = mp.inertia_centroid()});
+    p.push_back(x - r * Vector3d(0.5, 0, 0));
+    if (p.size() == six.rods.size()) {
+      p.push_back(x + r * Vector3d(0.5, 0, 0));
+    }
+  }
+  const int n = static_cast<int>(six.rods.size());
+  for (int k = 0; k <= n; ++k) {
+    const auto at = static_cast<std::size_t>(k);
+    const Vector3d before = k == 0 ? p[0] - p[static_cast<std::size_t>(n)] : p[at] - p[at - 1];
+    const Vector3d after = k == n ? p[0] - p[at] : p[at + 1] - p[at];
+    l.hinges.push_back({.a = k == n ? n - 1 : k,
+                        .b = k == 0 || k == n ? -1 : k - 1,
+                        .at = p[at],
+                        .axis = before.cross(after).normalized()});
+  }
+  const auto& g = bricard::Bricard<>::kGravity;
+  l.gravity = Vector3d(g[0], g[1], g[2]);
+  l.track_body = 2;
+  l.track_point = Vector3d(0.5, 0, 0);
+  return l;
+}
+
+}  // namespace
 
 MechanismResult run_mechanism_a04(const MechanismPlan& plan, const std::function<void()>& step) {
   using Eigen::Vector3d;
@@ -78,6 +120,10 @@ MechanismResult run_mechanism_a04(const MechanismPlan& plan, const std::function
   // MuJoCo, when installed: the same output times, measured by the same `p3`.
   const std::vector<MechanismRow> peer = mujoco_a04_rows(times, p3, plan.timing);
   r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  // Exudyn, when installed: the same six hinges (redundant), outputs and `p3`.
+  const std::vector<MechanismRow> exudyn =
+      exudyn_a04_rows(peer_linkage(six), times, p3, plan.timing);
+  r.rows.insert(r.rows.end(), exudyn.begin(), exudyn.end());
   return r;
 }
 

@@ -21,7 +21,9 @@
 // Peers: MuJoCo's fixed-step RK4 (peers/mujoco_mechanisms.cpp, when installed) runs each problem
 // from an MJCF model of its own, over the same output times, and is measured by the same code
 // against the same reference (the problem's .cpp hands it both, see the declarations at the end);
-// its rows join MechanismResult::rows with the peer's name as the method. Exudyn is not run yet.
+// its rows join MechanismResult::rows with the peer's name as the method. Exudyn's implicit
+// solvers (peers/exudyn_mechanisms.cpp and .py, when `import exudyn` works in the Python found at
+// configure time) run each problem in the same way, in absolute coordinates, from the same data.
 
 #include <functional>
 #include <limits>
@@ -84,7 +86,8 @@ MechanismResult run_mechanism_a01(const MechanismPlan& plan, const std::function
 MechanismResult run_mechanism_a03(const MechanismPlan& plan, const std::function<void()>& step);
 MechanismResult run_mechanism_a04(const MechanismPlan& plan, const std::function<void()>& step);
 
-// ---- peers (peers/mujoco_mechanisms.cpp): no rows when MuJoCo is not installed -------------
+// ---- peers (peers/mujoco_mechanisms.cpp, peers/exudyn_mechanisms.cpp): no rows when the peer
+// is not installed ------------------------------------------------------------------------------
 
 class PointTrackError;  // mechanisms/track.hpp
 
@@ -114,6 +117,35 @@ struct PlanarLinkage {
   double torque = 0;                                 ///< N m
 };
 
+/// A01 as the peers build it (filled by mechanisms/pendulum.cpp with the data of its scene): a
+/// bob, a ball framed at its centroid, on a massless bar with spherical ends from a fixed pivot,
+/// released at rest under uniform gravity.
+struct BarPendulum {
+  double mass = 0;                        ///< kg
+  double inertia = 0;                     ///< the ball's, about any centroidal axis (kg m^2)
+  Eigen::Vector3d pivot, start, gravity;  ///< the bar's length is |start - pivot| (m, m/s^2)
+};
+
+/// A spatial linkage of rigid bodies and hinges as the peers build it (A04, filled by
+/// mechanisms/bricard.cpp from the example's scene), at rest at the start, under uniform gravity.
+struct SpatialLinkage {
+  struct Body {
+    Eigen::Vector3d centroid;  ///< (m), where the body frame sits
+    Eigen::Matrix3d rotation;  ///< body frame -> world at the start
+    double mass = 0;           ///< kg
+    Eigen::Matrix3d inertia;   ///< about the centroid, body axes (kg m^2)
+  };
+  struct Hinge {  ///< between bodies a and b (b = -1: the ground)
+    int a = 0, b = -1;
+    Eigen::Vector3d at, axis;  ///< in the world at the start (m; a unit vector)
+  };
+  std::vector<Body> bodies;
+  std::vector<Hinge> hinges;
+  Eigen::Vector3d gravity;      ///< m/s^2
+  int track_body = 0;           ///< the point whose track is measured: on this body,
+  Eigen::Vector3d track_point;  ///< at this point of its frame (m)
+};
+
 /// MuJoCo's fixed-step RK4 (mj_step, integrator="RK4") over a ladder of steps per output
 /// interval, each run timed as tumble's are (best of timing.reps, the model's construction not
 /// timed) and measured by the problem's own measure:
@@ -126,6 +158,23 @@ std::vector<MechanismRow> mujoco_a04_rows(const std::vector<double>& times, Poin
 /// A03: the linkage `m` over `times`; `measure` takes the links' absolute angles at the last
 /// output (followed over the turns) and gives the problem's error.
 std::vector<MechanismRow> mujoco_a03_rows(
+    const PlanarLinkage& m, const std::vector<double>& times,
+    const std::function<double(const std::vector<double>& angles)>& measure, const Timing& timing);
+
+/// Whether Exudyn's rows run (the Python found at configure time imports exudyn).
+bool exudyn_available();
+/// Exudyn's implicit solvers (generalized-alpha, index 3, and the trapezoidal rule, index 2) over
+/// a ladder of fixed steps per output interval, each run timed inside the Python script
+/// (exu.SolveDynamic only, best of timing.reps) and measured by the problem's own measure, as
+/// MuJoCo's rows are:
+/// A01: the pendulum `p`, the bob's track at `times` measured by `bob`;
+std::vector<MechanismRow> exudyn_a01_rows(const BarPendulum& p, const std::vector<double>& times,
+                                          PointTrackError& bob, const Timing& timing);
+/// A04: the linkage `l`, its tracked point at `times` measured by `p3`;
+std::vector<MechanismRow> exudyn_a04_rows(const SpatialLinkage& l, const std::vector<double>& times,
+                                          PointTrackError& p3, const Timing& timing);
+/// A03: the linkage `m` over `times`, the links' absolute angles at the last output to `measure`.
+std::vector<MechanismRow> exudyn_a03_rows(
     const PlanarLinkage& m, const std::vector<double>& times,
     const std::function<double(const std::vector<double>& angles)>& measure, const Timing& timing);
 

@@ -29,13 +29,20 @@ MechanismResult run_mechanism_a01(const MechanismPlan& plan, const std::function
   using Eigen::Matrix3d;
   using Eigen::Vector3d;
   constexpr double g = 9.81;
+  // The data, as the peers get it too (Exudyn builds its model from it).
+  const BarPendulum data{.mass = 1.0,
+                         .inertia = 4e-5,
+                         .pivot = Vector3d::Zero(),
+                         .start = Vector3d(1, 0, 0),
+                         .gravity = Vector3d(0, -g, 0)};
   using Ball = RigidBody<EulerParameters>;
   Mechanism<Bodies<Ball>, Joints<Distance>, Loads<UniformGravity>> scene;
-  const auto ball =
-      scene.add(Ball(MassProperties<>::about_centroid(1.0, Matrix3d::Identity() * 4e-5)),
-                {.position = Vector3d(1, 0, 0)});
-  scene.add_load(ball, UniformGravity(Vector3d(0, -g, 0)));
-  scene.add_joint(ball, ground, Distance(Vector3d::Zero(), Vector3d::Zero(), 1.0));
+  const auto ball = scene.add(
+      Ball(MassProperties<>::about_centroid(data.mass, Matrix3d::Identity() * data.inertia)),
+      {.position = data.start});
+  scene.add_load(ball, UniformGravity(data.gravity));
+  scene.add_joint(ball, ground,
+                  Distance(Vector3d::Zero(), data.pivot, (data.start - data.pivot).norm()));
 
   std::vector<double> times;
   std::vector<Vector3d> exact;
@@ -60,6 +67,9 @@ MechanismResult run_mechanism_a01(const MechanismPlan& plan, const std::function
   // MuJoCo, when installed: the same output times, measured by the same `bob`.
   const std::vector<MechanismRow> peer = mujoco_a01_rows(times, bob, plan.timing);
   r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  // Exudyn, when installed: its model from `data`, the same output times, the same `bob`.
+  const std::vector<MechanismRow> exudyn = exudyn_a01_rows(data, times, bob, plan.timing);
+  r.rows.insert(r.rows.end(), exudyn.begin(), exudyn.end());
   return r;
 }
 

@@ -25,13 +25,18 @@ std::vector<MechanismProblem> mechanism_problems() {
   // HOOK for peers: a peer's runs of the same problem append rows to the MechanismResult with
   // the peer's name as `method`, the same output times and the same error measure (the problem's
   // .cpp hands them over); the table and the CSV take them as they are. MuJoCo's RK4 does so
-  // (peers/mujoco_mechanisms.cpp, when installed); Exudyn is not run yet.
+  // (peers/mujoco_mechanisms.cpp), and Exudyn's implicit solvers (peers/exudyn_mechanisms.cpp,
+  // a Python process on peers/exudyn_mechanisms.py), each when installed.
 #if TUMBLE_BENCH_HAVE_TUMBLE_ODEINT
   return {{"a01", &run_mechanism_a01}, {"a03", &run_mechanism_a03}, {"a04", &run_mechanism_a04}};
 #else
   return {};  // the problems' runs need tumble::odeint (Boost >= 1.74): not built
 #endif
 }
+
+#if !TUMBLE_BENCH_HAVE_TUMBLE_ODEINT
+bool exudyn_available() { return false; }  // peers/exudyn_mechanisms.cpp is not built
+#endif
 
 std::vector<double> mechanism_tolerances(bool full) {
   if (full) {

@@ -1,4 +1,5 @@
-# tumble's benchmarks, peers' detection: Pinocchio and MuJoCo as installed by pip (optional).
+# tumble's benchmarks, peers' detection: Pinocchio, MuJoCo and Exudyn as installed by pip
+# (optional).
 # Included by benchmarks/CMakeLists.txt, in its scope, before the studies that use them.
 #
 # `pip install pin` ships Pinocchio's headers under site-packages/cmeel.prefix, `pip install
@@ -7,6 +8,9 @@
 # micro/micro.cmake and main/tumble_bench.cmake (included after this file, in the same scope):
 #   TUMBLE_BENCH_HAVE_PINOCCHIO  ON when found; link tumble_bench_pinocchio (header-only)
 #   TUMBLE_BENCH_HAVE_MUJOCO     ON when found; link tumble_bench_mujoco
+#   TUMBLE_BENCH_HAVE_EXUDYN     ON when TUMBLE_BENCH_PYTHON can `import exudyn, numpy`: study (e)
+#                                runs peers/exudyn_mechanisms.py with that Python (Exudyn has no
+#                                C or C++ interface; nothing is linked)
 find_program(TUMBLE_BENCH_PYTHON NAMES python3 python DOC "python used to locate pip-installed peers")
 
 set(TUMBLE_BENCH_HAVE_PINOCCHIO OFF)
@@ -86,5 +90,37 @@ if(NOT TUMBLE_BENCH_MUJOCO STREQUAL "OFF")
   else()
     message(STATUS "tumble benchmarks: MuJoCo not found, its comparison is skipped "
                    "(pip install mujoco to add it)")
+  endif()
+endif()
+
+# Exudyn (`pip install exudyn`): a Python package over a C++ core, run by study (e) as a Python
+# process (peers/exudyn_mechanisms.cpp). Its import is tried from the build directory, so that no
+# folder of the source tree shadows a module.
+set(TUMBLE_BENCH_EXUDYN "AUTO" CACHE STRING
+    "Compare with Exudyn in the mechanisms' study (AUTO, ON, OFF)")
+set_property(CACHE TUMBLE_BENCH_EXUDYN PROPERTY STRINGS AUTO ON OFF)
+set(TUMBLE_BENCH_HAVE_EXUDYN OFF)
+if(NOT TUMBLE_BENCH_EXUDYN STREQUAL "OFF")
+  set(_tumble_exudyn_version "")
+  set(_tumble_exudyn_status 1)
+  if(TUMBLE_BENCH_PYTHON)
+    execute_process(COMMAND ${TUMBLE_BENCH_PYTHON} -c
+                            "import exudyn, numpy; print('exudyn', exudyn.__version__)"
+                    WORKING_DIRECTORY "${CMAKE_CURRENT_BINARY_DIR}"
+                    RESULT_VARIABLE _tumble_exudyn_status
+                    OUTPUT_VARIABLE _tumble_exudyn_version ERROR_QUIET
+                    OUTPUT_STRIP_TRAILING_WHITESPACE)
+  endif()
+  string(REGEX MATCH "exudyn [0-9][^ \n]*" _tumble_exudyn_version "${_tumble_exudyn_version}")
+  if(_tumble_exudyn_status EQUAL 0 AND _tumble_exudyn_version)
+    set(TUMBLE_BENCH_HAVE_EXUDYN ON)
+    message(STATUS "tumble benchmarks: ${_tumble_exudyn_version} found (${TUMBLE_BENCH_PYTHON})")
+  elseif(TUMBLE_BENCH_EXUDYN STREQUAL "ON")
+    message(FATAL_ERROR "tumble benchmarks: TUMBLE_BENCH_EXUDYN=ON but '${TUMBLE_BENCH_PYTHON}' "
+                        "cannot import exudyn and numpy (pip install exudyn, and set "
+                        "TUMBLE_BENCH_PYTHON to that Python)")
+  else()
+    message(STATUS "tumble benchmarks: Exudyn not found, its comparison is skipped "
+                   "(pip install exudyn, TUMBLE_BENCH_PYTHON=that python, to add it)")
   endif()
 endif()

@@ -1,0 +1,320 @@
+#!/usr/bin/env python3
+"""tumble_bench, study (e): Exudyn on the IFToMM mechanisms A01, A03 and A04.
+
+Run by peers/exudyn_mechanisms.cpp through the Python found at configure time:
+
+    python exudyn_mechanisms.py INPUT.json OUTPUT.txt
+
+INPUT (written by the C++ side from the data of tumble's own problem):
+    problem   "a01", "a03" or "a04"
+    times     the output times (s), increasing, from the first output to the end
+    ladder    steps per output interval, one run per entry (the step h = first time / entry)
+    solvers   Exudyn's DynamicSolverType names to run, e.g. ["GeneralizedAlpha"]
+    reps, slow_run, clock   tumble's Timing: best of `reps` runs, one run once a run takes
+              longer than `slow_run` s; "wall" or "cpu" decides which clock those refer to
+    budget    s: a ladder stops after a run that took longer (the finer steps would take longer)
+    pendulum  A01: mass (kg), inertia (kg m^2, about the centroid, isotropic), pivot, start,
+              gravity (m, m/s^2); the bob hangs on a massless bar of |start - pivot|
+    linkage   A03: mechanisms.hpp's PlanarLinkage (links, loops, spring, motor)
+    spatial   A04: bodies (centroid, rotation body -> world, mass, inertia about the centroid in
+              body axes), hinges (bodies a, b, -1 the ground; a point and an axis in the world),
+              gravity, the tracked point (body, point in body axes)
+
+OUTPUT, tab-separated lines (a file, since Exudyn prints on stdout):
+    run  solver  substeps  h  ok  steps  newton_iterations  jacobians  |C|  walls  cpus  message
+    point  k  x  y  z         A01/A04: the tracked point at output k (after each successful run)
+    angles  a0  a1 ...        A03: the links' absolute angles at the last output (rad)
+    end                       written last: the file is complete
+
+The models are in absolute coordinates, as tumble's: A01 and A04 rigid bodies with Euler
+parameters (NodeRigidBodyEP, ObjectRigidBody), A03 planar rigid bodies (NodeRigidBody2D: x, y and
+the angle per link, Exudyn's element for a planar linkage, which avoids the nine redundant rows
+of spatial hinges in a plane). Exudyn's explicit solvers refuse joints (its documentation:
+"explicit solvers are in general only applicable for systems without constraints"), so the
+solvers are the implicit index-3 generalized-alpha and the index-2 trapezoidal rule, both of
+second order, over a ladder of fixed steps. Only exu.SolveDynamic is timed (it includes the
+solver's initialization, as tumble's rows include their integrator's construction); building and
+assembling the model is not.
+"""
+
+import json
+import math
+import os
+import sys
+import time
+import traceback
+
+sys.exudynFast = True  # Exudyn's build without range checks (its documentation: 30 % faster)
+import exudyn as exu  # noqa: E402
+import numpy as np  # noqa: E402
+from exudyn.itemInterface import (  # noqa: E402
+    LoadMassProportional, LoadTorqueVector, MarkerBodyMass, MarkerBodyPosition, MarkerBodyRigid,
+    NodeRigidBody2D, NodeRigidBodyEP, ObjectConnectorDistance, ObjectConnectorSpringDamper,
+    ObjectGround, ObjectJointRevolute2D, ObjectJointRevoluteZ, ObjectRigidBody,
+    ObjectRigidBody2D, SensorBody)
+from exudyn.rigidBodyUtilities import RotationMatrix2EulerParameters  # noqa: E402
+
+
+def frame_with_z(axis):
+    """An orthonormal frame whose third column is `axis` (a hinge's marker frame: JointRevoluteZ
+    turns about the markers' z; their x and y need not agree)."""
+    z = np.asarray(axis, float) / np.linalg.norm(axis)
+    helper = np.array([1.0, 0, 0]) if abs(z[0]) < 0.9 else np.array([0, 1.0, 0])
+    x = np.cross(helper, z)
+    x /= np.linalg.norm(x)
+    return np.column_stack([x, np.cross(z, x), z])
+
+
+class Model:
+    """An assembled Exudyn system, what the run records and how |C| is measured after it."""
+
+    def __init__(self):
+        self.sc = exu.SystemContainer()
+        self.mbs = self.sc.AddSystem()
+        self.ground = self.mbs.AddObject(ObjectGround())
+        self.sensor = None  # the tracked point (A01, A04)
+        self.pairs = []  # (body, local point, body, local point) that must coincide: |C|
+        self.angles = None  # A03: a function giving the links' absolute angles
+        self.redundant = False  # A04: constraint rows of deficient rank
+
+    def point(self, body, local):
+        """A body point in the world (Exudyn's output at the current state), m."""
+        if body is None:
+            return np.asarray(local, float)
+        return np.asarray(self.mbs.GetObjectOutputBody(
+            body, exu.OutputVariableType.Position, localPosition=list(local)), float)[:3]
+
+    def residual(self):
+        return max((np.linalg.norm(self.point(a, pa) - self.point(b, pb))
+                    for a, pa, b, pb in self.pairs), default=0.0)
+
+
+def pendulum(data):
+    """A01: the bob a rigid body with Euler parameters, its centre on an ObjectConnectorDistance
+    to the pivot (a massless bar with spherical ends, as tumble's Distance joint)."""
+    m = Model()
+    mbs = m.mbs
+    start, pivot = np.asarray(data["start"], float), np.asarray(data["pivot"], float)
+    node = mbs.AddNode(NodeRigidBodyEP(referenceCoordinates=list(start) + [1.0, 0, 0, 0]))
+    j = data["inertia"]
+    bob = mbs.AddObject(ObjectRigidBody(mass=data["mass"], inertia=[j, j, j, 0, 0, 0],
+                                        nodeNumber=node))
+    on_ground = mbs.AddMarker(MarkerBodyPosition(bodyNumber=m.ground, localPosition=list(pivot)))
+    on_bob = mbs.AddMarker(MarkerBodyPosition(bodyNumber=bob, localPosition=[0, 0, 0]))
+    mbs.AddObject(ObjectConnectorDistance(markerNumbers=[on_ground, on_bob],
+                                          distance=float(np.linalg.norm(start - pivot))))
+    mbs.AddLoad(LoadMassProportional(markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=bob)),
+                                     loadVector=list(data["gravity"])))
+    m.sensor = mbs.AddSensor(SensorBody(bodyNumber=bob, localPosition=[0, 0, 0],
+                                        storeInternal=True,
+                                        outputVariableType=exu.OutputVariableType.Position))
+    length = float(np.linalg.norm(start - pivot))
+    m.residual = lambda: abs(np.linalg.norm(m.point(bob, [0, 0, 0]) - pivot) - length)
+    return m
+
+
+def spatial(data):
+    """A04: rigid bodies with Euler parameters at their centroids, a JointRevoluteZ per hinge."""
+    m = Model()
+    mbs = m.mbs
+    bodies, frames = [], []
+    for b in data["bodies"]:
+        rot = np.asarray(b["rotation"], float)
+        node = mbs.AddNode(NodeRigidBodyEP(
+            referenceCoordinates=list(b["centroid"]) + list(RotationMatrix2EulerParameters(rot))))
+        j = np.asarray(b["inertia"], float)  # Exudyn's order: xx, yy, zz, yz, xz, xy
+        body = mbs.AddObject(ObjectRigidBody(
+            mass=b["mass"], inertia=[j[0, 0], j[1, 1], j[2, 2], j[1, 2], j[0, 2], j[0, 1]],
+            nodeNumber=node))
+        mbs.AddLoad(LoadMassProportional(
+            markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=body)),
+            loadVector=list(data["gravity"])))
+        bodies.append(body)
+        frames.append((np.asarray(b["centroid"], float), rot))
+
+    def marker(index, at, axis):  # a hinge's marker on body `index` (-1: the ground)
+        if index < 0:
+            body, local, frame = m.ground, at, frame_with_z(axis)
+        else:
+            c, rot = frames[index]
+            body, local, frame = bodies[index], rot.T @ (at - c), frame_with_z(rot.T @ axis)
+        if hasattr(exu, "HT"):  # Exudyn >= 1.12.244: the marker carries the hinge's frame
+            number = mbs.AddMarker(MarkerBodyRigid(
+                bodyNumber=body, localHT=exu.HT(rotation=frame, translation=list(local))))
+            return number, None, (None if index < 0 else body), local
+        number = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=list(local)))
+        return number, frame, (None if index < 0 else body), local
+
+    for h in data["hinges"]:
+        at, axis = np.asarray(h["at"], float), np.asarray(h["axis"], float)
+        ma, fa, ba, la = marker(h["a"], at, axis)
+        mb, fb, bb, lb = marker(h["b"], at, axis)
+        frames_given = {} if fa is None else {"rotationMarker0": fa, "rotationMarker1": fb}
+        mbs.AddObject(ObjectJointRevoluteZ(markerNumbers=[ma, mb], **frames_given))
+        m.pairs.append((ba, la, bb, lb))
+    track = data["track"]
+    m.sensor = mbs.AddSensor(SensorBody(bodyNumber=bodies[track["body"]],
+                                        localPosition=list(track["point"]), storeInternal=True,
+                                        outputVariableType=exu.OutputVariableType.Position))
+    m.redundant = data.get("redundant", True)
+    return m
+
+
+def planar(data):
+    """A03: a NodeRigidBody2D (x, y, angle) per link at its centroid, a JointRevolute2D per hinge
+    (each link's to its parent, and the loops'), the spring an ObjectConnectorSpringDamper from D
+    to C, the motor a LoadTorqueVector about z on the crank."""
+    m = Model()
+    mbs = m.mbs
+    links = data["links"]
+    nodes, bodies = [], []
+    for link in links:
+        c = link["centroid"]
+        nodes.append(mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[c[0], c[1],
+                                                                       link["angle"]])))
+        bodies.append(mbs.AddObject(ObjectRigidBody2D(mass=link["mass"],
+                                                      inertia=link["inertia"],
+                                                      nodeNumber=nodes[-1])))
+
+    def local(index, at):  # a world point (x, y) of the starting configuration in link axes
+        link = links[index]
+        d = np.asarray(at, float) - np.asarray(link["centroid"], float)
+        ca, sa = math.cos(link["angle"]), math.sin(link["angle"])
+        return [ca * d[0] + sa * d[1], -sa * d[0] + ca * d[1], 0.0]
+
+    def marker(index, at):
+        if index < 0:
+            return (mbs.AddMarker(MarkerBodyPosition(bodyNumber=m.ground,
+                                                     localPosition=[at[0], at[1], 0.0])),
+                    None, [at[0], at[1], 0.0])
+        p = local(index, at)
+        return (mbs.AddMarker(MarkerBodyPosition(bodyNumber=bodies[index], localPosition=p)),
+                bodies[index], p)
+
+    def hinge(a, b, at):
+        ma, ba, pa = marker(a, at)
+        mb, bb, pb = marker(b, at)
+        mbs.AddObject(ObjectJointRevolute2D(markerNumbers=[ma, mb]))
+        m.pairs.append((ba, pa, bb, pb))
+
+    for i, link in enumerate(links):
+        hinge(i, link["parent"], link["hinge"])
+    for loop in data["loops"]:
+        hinge(loop["a"], loop["b"], loop["at"])
+    on_link = marker(data["spring_link"], data["spring_on_link"])[0]
+    on_ground = marker(-1, data["spring_on_ground"])[0]
+    mbs.AddObject(ObjectConnectorSpringDamper(markerNumbers=[on_link, on_ground],
+                                              stiffness=data["stiffness"], damping=0.0,
+                                              referenceLength=data["rest_length"]))
+    motor = mbs.AddMarker(MarkerBodyRigid(bodyNumber=bodies[data["motor_link"]],
+                                          localPosition=[0, 0, 0]))
+    mbs.AddLoad(LoadTorqueVector(markerNumber=motor, loadVector=[0, 0, data["torque"]]))
+    # The angle is a coordinate of the node, counted over the turns (reference + displacement).
+    m.angles = lambda: [links[i]["angle"] + float(mbs.GetNodeOutput(
+        nodes[i], exu.OutputVariableType.Coordinates)[2]) for i in range(len(links))]
+    return m
+
+
+def settings(model, solver, t_end, steps, write_period):
+    s = exu.SimulationSettings()
+    ti = s.timeIntegration
+    ti.endTime = t_end
+    ti.numberOfSteps = steps
+    ti.verboseMode = 0
+    # Newton: tight enough that its tolerance does not limit the error on any rung. Exudyn's
+    # default, relative 1e-8 and absolute 1e-10, does on A01 (2.3e-2 m instead of 1.8e-3 m at 64
+    # steps per output); 1e-10 and 1e-12 give the errors of 1e-12 and 1e-14 within 0.2 % on every
+    # rung, 5 % faster (docs/benchmarks/mechanisms.md). Modified Newton (the Jacobian kept while
+    # it converges), Exudyn's default, is as fast as full Newton here.
+    ti.newton.relativeTolerance = 1e-10
+    ti.newton.absoluteTolerance = 1e-12
+    ti.newton.maxIterations = 50
+    ti.adaptiveStep = False  # a fixed step: a Newton failure fails the run instead of refining
+    # generalized-alpha: Exudyn's default spectral radius at infinity, 0.9. 1.0 (no numerical
+    # damping) fails with index-3 constraints; 0.99 fails at the coarse steps and is 1 % more
+    # accurate than 0.9 elsewhere (A01). The trapezoidal rule does not use it.
+    ti.generalizedAlpha.spectralRadius = 0.9
+    if model.redundant:  # Exudyn's remedy for redundant constraints: full-pivoting LU
+        s.linearSolver.solverType = exu.LinearSolverType.EigenDense
+        s.linearSolver.ignoreSingularJacobian = True
+    s.solution.file.write = False
+    s.solution.sensors.writePeriod = write_period
+    s.parallel.numberOfThreads = 1
+    return s
+
+
+def run(data, build, solver, substeps, out):
+    times = data["times"]
+    h = times[0] / substeps
+    steps = int(round(times[-1] / h))
+    model = build()
+    model.mbs.Assemble()
+    s = settings(model, solver, times[-1], steps, times[0])
+    walls, cpus = [], []
+    ok, message = True, ""
+    attempt = time.perf_counter()
+    stats = (0, 0, 0)
+    try:
+        while True:
+            w0, c0 = time.perf_counter(), time.thread_time()
+            model.mbs.SolveDynamic(s, solverType=getattr(exu.DynamicSolverType, solver),
+                                   storeSolver=True)
+            walls.append(time.perf_counter() - w0)
+            cpus.append(time.thread_time() - c0)
+            base = cpus if data["clock"] == "cpu" else walls
+            if len(base) >= data["reps"] or (len(base) == 1 and base[0] > data["slow_run"]):
+                break
+        it = model.mbs.sys["dynamicSolver"].it
+        stats = (it.currentStepIndex, it.newtonStepsCount, it.newtonJacobiCount)
+    except Exception as e:  # Exudyn raises SolverError, and others, when a run fails
+        ok, message = False, "Exudyn: " + (str(e) or type(e).__name__)
+    drift = model.residual() if ok else float("nan")
+    record = []
+    if ok and model.sensor is not None:
+        stored = np.asarray(model.mbs.GetSensorStoredData(model.sensor))
+        for k, t in enumerate(times):
+            i = int(np.argmin(np.abs(stored[:, 0] - t)))
+            if abs(stored[i, 0] - t) > 1e-9 * t:
+                ok, message = False, f"no sensor output at t = {t} s"
+                break
+            record.append("point\t%d\t%.17g\t%.17g\t%.17g" % ((k,) + tuple(stored[i, 1:4])))
+    if ok and model.angles is not None:
+        record.append("angles\t" + "\t".join("%.17g" % a for a in model.angles()))
+    fields = [solver, substeps, "%.17g" % h, int(ok), *stats, "%.17g" % drift,
+              ",".join("%.9g" % w for w in walls), ",".join("%.9g" % c for c in cpus),
+              " ".join(message.split())]
+    out.write("run\t" + "\t".join(str(f) for f in fields) + "\n")
+    for line in record:
+        out.write(line + "\n")
+    out.flush()
+    base = cpus if data["clock"] == "cpu" else walls
+    return min(base) if ok else time.perf_counter() - attempt
+
+
+def main():
+    if len(sys.argv) != 3:
+        print(__doc__, file=sys.stderr)
+        return 2
+    with open(sys.argv[1]) as f:
+        data = json.load(f)
+    builders = {"a01": lambda: pendulum(data["pendulum"]),
+                "a03": lambda: planar(data["linkage"]),
+                "a04": lambda: spatial(data["spatial"])}
+    build = builders[data["problem"]]
+    with open(sys.argv[2], "w") as out:
+        for solver in data["solvers"]:
+            for substeps in data["ladder"]:
+                # A failed run (Newton diverged at a coarse step) does not end the ladder;
+                # a slow one does: the finer steps would take longer still.
+                if run(data, build, solver, substeps, out) > data["budget"]:
+                    break
+        out.write("end\n")
+    return 0
+
+
+if __name__ == "__main__":
+    try:
+        sys.exit(main())
+    except Exception:  # a clear message for tumble_bench's stderr
+        traceback.print_exc()
+        sys.exit(1)
