@@ -9,7 +9,8 @@
 //               the log-log slope;
 //   (d)         runs per second of an ensemble against threads and MPI processes, the per-run cost
 //               against serial loops, memory and allocations per run, against their targets;
-//   (e)         per mechanism (IFToMM A01, A03, A04) and method (tumble's integrators, MuJoCo's
+//   (e)         per mechanism (IFToMM A01, A03, A04, A05) and method (tumble's integrators,
+//   MuJoCo's
 //               RK4 when installed), the time to reach an error of 1e-3, 1e-6, 1e-9 in the
 //               problem's own measure (time_at, as in (b)), the best error and the constraint
 //               residual |C| at the end of the most accurate run.
@@ -181,7 +182,7 @@ std::string header_text(const Options& o, const std::filesystem::path& out, int 
        "on\n"
     << "            problems with exact answers, (c) cost per step against the number of bodies,\n"
     << "            (d) runs per second of an ensemble against threads and MPI processes,\n"
-    << "            (e) run time to reach an error on IFToMM mechanisms (A01, A03, A04)\n"
+    << "            (e) run time to reach an error on IFToMM mechanisms (A01, A03-A05)\n"
     << "  machine   " << first_line("/proc/cpuinfo", "model name") << ", "
     << std::thread::hardware_concurrency() << " hardware threads, load " << load << "\n"
     << "  build     " << compiler() << ", " << TUMBLE_BENCH_BUILD_TYPE << " ("
@@ -468,11 +469,11 @@ std::string mechanism_table_footer(TimeBase clock) {
          "max |C| at\n"
          "   the end of that run; runs: those that finished of the ladder (a method is not run at "
          "tighter\n"
-         "   tolerances after it failed). MuJoCo's and Exudyn's rows (when installed) sweep a "
-         "fixed step,\n"
-         "   not a tolerance: every rung is run, and its best run's step is given below it. Every "
-         "run:\n"
-         "   mechanism_<problem>.csv)\n";
+         "   tolerances after it failed, unless it was refused as stiff). MuJoCo's and Exudyn's "
+         "rows (when\n"
+         "   installed) sweep a fixed step, not a tolerance: every rung is run, and its best run's "
+         "step is\n"
+         "   given below it. Every run: mechanism_<problem>.csv)\n";
 }
 
 std::string scaling_table(const std::vector<ScalingRow>& rows) {

@@ -79,6 +79,7 @@ if(TARGET tumble::odeint)
     mechanisms/pendulum.cpp       # mechanism: IFToMM A01, the simple pendulum
     mechanisms/andrews.cpp        # mechanism: IFToMM A03, Andrews' squeezing mechanism
     mechanisms/bricard.cpp        # mechanism: IFToMM A04, Bricard's mechanism
+    mechanisms/flyball.cpp        # mechanism: IFToMM A05, the stiff flyball governor
     peers/mujoco_mechanisms.cpp   # mechanisms: MuJoCo's RK4 on them (when installed)
     peers/exudyn_mechanisms.cpp)  # mechanisms: Exudyn's solvers on them (when installed)
   target_link_libraries(tumble_bench PRIVATE tumble::odeint)

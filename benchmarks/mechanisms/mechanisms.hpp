@@ -6,6 +6,8 @@
 //        integrated in long double (tests/joint/andrews_reference.hpp)
 //   a04  Bricard's mechanism (A04), redundant: no closed form, a run at tight tolerance of its
 //        non-redundant twin (examples/bricard.cpp), stated as such
+//   a05  the stiff flyball governor (A05): a second model in four minimal coordinates
+//        (tests/joint/flyball_reference.hpp); no peer runs it yet
 // Each problem's scene type is instantiated in a translation unit of its own
 // (mechanisms/<problem>.cpp; the compiler's memory stays within CI's budget per process), which
 // runs tumble's integrators over a tolerance ladder with the same output times:
@@ -85,6 +87,7 @@ std::vector<double> mechanism_tolerances(bool full);
 MechanismResult run_mechanism_a01(const MechanismPlan& plan, const std::function<void()>& step);
 MechanismResult run_mechanism_a03(const MechanismPlan& plan, const std::function<void()>& step);
 MechanismResult run_mechanism_a04(const MechanismPlan& plan, const std::function<void()>& step);
+MechanismResult run_mechanism_a05(const MechanismPlan& plan, const std::function<void()>& step);
 
 // ---- peers (peers/mujoco_mechanisms.cpp, peers/exudyn_mechanisms.cpp): no rows when the peer
 // is not installed ------------------------------------------------------------------------------

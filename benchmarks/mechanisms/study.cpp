@@ -28,7 +28,10 @@ std::vector<MechanismProblem> mechanism_problems() {
   // (peers/mujoco_mechanisms.cpp), and Exudyn's implicit solvers (peers/exudyn_mechanisms.cpp,
   // a Python process on peers/exudyn_mechanisms.py), each when installed.
 #if TUMBLE_BENCH_HAVE_TUMBLE_ODEINT
-  return {{"a01", &run_mechanism_a01}, {"a03", &run_mechanism_a03}, {"a04", &run_mechanism_a04}};
+  return {{"a01", &run_mechanism_a01},
+          {"a03", &run_mechanism_a03},
+          {"a04", &run_mechanism_a04},
+          {"a05", &run_mechanism_a05}};
 #else
   return {};  // the problems' runs need tumble::odeint (Boost >= 1.74): not built
 #endif
