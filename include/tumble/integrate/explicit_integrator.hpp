@@ -319,8 +319,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     if constexpr (SceneT::has_joints) {
       // Where the rows frozen as redundant no longer leave the others independent, they are
       // decided again here, between two steps (scene/assembly.hpp).
-      bool redecided = false;
-      const ConstraintResidual r = detail::project_mechanism(*scene_, ws_, y, bases(), redecided);
+      const ConstraintResidual r = detail::project_mechanism(*scene_, ws_, y, bases());
       if (!(r.position <= detail::kJointProjectionFailure)) [[unlikely]] {
         throw ExplicitIntegrationError("tumble::OdeintIntegrator: the projection onto the joints' "
                                        "constraints did not converge (max |C| = " +

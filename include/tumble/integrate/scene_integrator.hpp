@@ -243,8 +243,7 @@ template <class SceneT> class SceneSystem {
       // decided again at this trial state (scene/assembly.hpp); they stay so for the steps after
       // it, accepted or not: which rows are retained does not change the motion on the
       // constraints, only how well its reactions are conditioned.
-      bool redecided = false;
-      const ConstraintResidual r = project_mechanism(*scene_, ws_, z, bases(), redecided);
+      const ConstraintResidual r = project_mechanism(*scene_, ws_, z, bases());
       if (!(r.position <= kJointProjectionFailure)) {
         throw RecoverableError("the projection onto the joints' constraints did not converge "
                                "(max |C| = " +

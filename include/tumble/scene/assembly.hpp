@@ -248,10 +248,10 @@ ConstraintResidual project_constraints(const SceneT& scene, SceneWorkspace<Scene
 /// An integrator's projection of y onto a mechanism's joints between steps (both integrators):
 /// project_constraints for every body; where its result shows the rows retained as independent
 /// failing (retained_rows_failed), the redundant rows are decided again at the projected y
-/// (freeze_redundant_rows) and the projection repeated. `redecided`: whether they were.
+/// (freeze_redundant_rows) and the projection repeated.
 template <class SceneT, class Y>
 ConstraintResidual project_mechanism(const SceneT& scene, SceneWorkspace<SceneT>& ws, Y& y,
-                                     std::span<const Matrix3<double>> base, bool& redecided) {
+                                     std::span<const Matrix3<double>> base) {
   int iterations = 0;
   const auto project = [&] {
     return project_constraints(
@@ -259,8 +259,7 @@ ConstraintResidual project_mechanism(const SceneT& scene, SceneWorkspace<SceneT>
         [](int) { return true; }, iterations);
   };
   ConstraintResidual r = project();
-  redecided = retained_rows_failed(ws.joints(), r, iterations);
-  if (redecided) [[unlikely]] {
+  if (retained_rows_failed(ws.joints(), r, iterations)) [[unlikely]] {
     freeze_redundant_rows(scene, ws, y, base);
     r = project();
   }
