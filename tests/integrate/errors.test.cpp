@@ -10,7 +10,9 @@
 //    it when it is made, CVODE in its first step);
 //  - an event function that throws: the same, "roots() threw";
 //  - the user's observer and an event's action that throw: their own exception, unchanged (they
-//    are called between steps, not from inside one).
+//    are called between steps, not from inside one);
+//  - output times: the same refused (std::invalid_argument, nothing integrated), a repeated
+//    time the same state twice.
 
 #include "tumble/integrate/errors.hpp"
 
@@ -236,4 +238,40 @@ TEST_CASE("errors: the front door does not take a load's exception for stiffness
     (void)tumble::integrate(scene, 0.0, {0.5, 1.0}, [](double, const SceneState&) {});
   });
   check_callback_error<std::runtime_error>(f, "rhs()", "sensor unplugged", 0.0, 0.25);
+}
+
+TEMPLATE_TEST_CASE("errors: every integrator takes and refuses the same output times",
+                   "[integrate][errors]", CvodeBdf, CvodeAdams, Fehlberg, Dopri, Auto) {
+  INFO(TestType::name);
+  const TestScene scene = scene_with_failing_load(1e9);  // never throws
+  auto integrator = TestType::make(scene);
+  // Refused before anything is integrated: backwards, not finite, before the current time.
+  const auto refuses = [&](const std::vector<double>& times) {
+    int calls = 0;
+    std::string what;
+    try {
+      integrator.integrate(times, [&](double, const SceneState&) { ++calls; });
+    } catch (const std::invalid_argument& e) {
+      what = e.what();
+    }
+    CHECK(what.find("the output times must be finite, non-decreasing") != std::string::npos);
+    CHECK(calls == 0);
+    CHECK(integrator.time() == 0.0);
+  };
+  refuses({0.5, 1.0, 0.75});
+  refuses({0.5, std::nan("")});
+  refuses({-0.5, 1.0});
+  // A time repeated (the start time too) gives the same state again.
+  std::vector<double> seen;
+  std::vector<Eigen::VectorXd> states;
+  integrator.integrate(std::vector<double>{0.0, 0.0, 0.5, 0.5, 1.0},
+                       [&](double t, const SceneState& s) {
+                         seen.push_back(t);
+                         states.push_back(s.y);
+                       });
+  CHECK(seen == std::vector<double>{0.0, 0.0, 0.5, 0.5, 1.0});
+  REQUIRE(states.size() == 5);
+  CHECK(states[0] == states[1]);
+  CHECK(states[2] == states[3]);
+  CHECK(states[3] != states[4]);
 }

@@ -180,19 +180,10 @@ template <class SceneT, int N = Eigen::Dynamic> class AutoIntegrator {
   /// observer(t, state) at each output time (non-decreasing, not before time(), validated before
   /// integrating).
   template <class Times, class Observer> void integrate(const Times& times, Observer&& observer) {
-    std::vector<double> ts;  // the times, validated; the tail is what is left after a hand-over
-    double last = time();
+    detail::check_output_times("tumble::AutoIntegrator::integrate", time(), times);
+    std::vector<double> ts;  // the times; the tail is what is left after a hand-over
     for (const auto& value : times) {
-      const double t = static_cast<double>(value);
-      if (!std::isfinite(t) || t < last) {
-        throw std::invalid_argument(
-            "tumble::AutoIntegrator::integrate: the output times must be finite, "
-            "non-decreasing and not before the current time " +
-            detail::format_double(time()) + "; found " + detail::format_double(t) + " after " +
-            detail::format_double(last));
-      }
-      last = t;
-      ts.push_back(t);
+      ts.push_back(static_cast<double>(value));
     }
     std::size_t done = 0;  // outputs handed to the observer
     const auto observe = [&](double t, const SceneState& s) {

@@ -118,6 +118,27 @@ inline void validate_shared(const std::string& who, double rtol, const AbsoluteT
   }
 }
 
+/// Every integrator's integrate() (and the ensembles') checks its output times with this before
+/// it integrates anything: each finite, none before the one before it, the first not before
+/// `t_now` (`when`: "the current time", "the start time"). A time repeated gives the same state
+/// twice. \throws std::invalid_argument naming `who` and the first bad time.
+template <class Times>
+void check_output_times(const char* who, double t_now, const Times& times,
+                        const char* when = "the current time") {
+  double last = t_now;
+  for (const auto& value : times) {
+    const double t = static_cast<double>(value);
+    if (!std::isfinite(t) || t < last) {
+      throw std::invalid_argument(std::string(who) +
+                                  ": the output times must be finite, non-decreasing and not "
+                                  "before " +
+                                  when + " " + format_double(t_now) + "; found " +
+                                  format_double(t) + " after " + format_double(last));
+    }
+    last = t;
+  }
+}
+
 /// atol_i: the scalar, or entry i of the per-entry tolerance.
 [[nodiscard]] inline double atol_at(const AbsoluteTolerance& atol, Eigen::Index i) {
   if (const auto* a = std::get_if<double>(&atol)) {

@@ -35,6 +35,7 @@
 #include "tumble/core/errors.hpp"
 #include "tumble/core/format.hpp"
 #include "tumble/integrate/detail/callback_error.hpp"
+#include "tumble/integrate/detail/event_action.hpp"
 #include "tumble/integrate/detail/explicit_diagnostics.hpp"
 #include "tumble/integrate/detail/explicit_numerics.hpp"
 #include "tumble/integrate/detail/odeint_stepper.hpp"
@@ -121,16 +122,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   /// observer(t, state) at each output time (non-decreasing, not before time(), validated before
   /// integrating).
   template <class Times, class Observer> void integrate(const Times& times, Observer&& observer) {
-    double last = t_;
-    for (const double t : times) {
-      if (!std::isfinite(t) || t < last) {
-        throw std::invalid_argument(
-            "tumble::OdeintIntegrator::integrate: the output times must be finite, "
-            "non-decreasing and not before the current time " +
-            num(t_) + "; found " + num(t) + " after " + num(last));
-      }
-      last = t;
-    }
+    detail::check_output_times("tumble::OdeintIntegrator::integrate", t_, times);
     std::visit(
         [&]<class S>(S& st) {
           if constexpr (S::dense) {  // Dormand-Prince
@@ -341,13 +333,6 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     return changed || recentered;
   }
 
-  /// 1 when no chart of the (finite: step_with checked it) trial state x ends deeper in its
-  /// switch zone than half its width; else the fraction of the step to retry with
-  /// (scene/charts.hpp, chart_step_fraction).
-  double acceptable(const State& x) {
-    return chart_step_fraction(*scene_, map(x_), map(x), deep_, g0_, g_);
-  }
-
   void events_at(double t, const State& x, CacheLineVector<double>& g) {
     const auto& events = scene_->events();
     const SceneStateView view(x.data(), size(), bases());
@@ -397,7 +382,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     const System<S> sys{this};
     for (;;) {
       if (options_.max_steps > 0 && run_.attempts >= options_.max_steps) {
-        out_of_budget(t_out);
+        stiffness_test(t_out, true);
       }
       if (options_.stiffness_window > 0 && window_.attempts >= options_.stiffness_window) {
         stiffness_test(t_out);
@@ -428,7 +413,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
         } else if (!ok) {
           ++run_.rejected;
           ++window_.rejected;
-        } else if (const double f = acceptable(x_new_); f < 1.0) {
+        } else if (const double f =  // < 1: a chart ends deep in its switch zone (charts.hpp)
+                   chart_step_fraction(*scene_, map(x_), map(x_new_), deep_, g0_, g_);
+                   f < 1.0) {
           ok = false;
           h = f * h_try;
         }
@@ -539,15 +526,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       t_ = t_first;
     }
     ++stats_.events;
-    if (const auto& action = events[first].action) {
-      event_state_.y = map(x_);
-      event_state_.base = base_;
-      action(t_, event_state_);
-      if (event_state_.y.size() != size() || event_state_.base.size() != base_.size()) {
-        throw std::invalid_argument("tumble::Event: an action changed the size of the state");
-      }
-      map(x_) = event_state_.y;
-      base_ = event_state_.base;
+    if (events[first].action) {
+      Eigen::Map<Vec> y = map(x_);
+      detail::apply_event_action(events[first], t_, event_state_, y, base_);
     }
     return true;
   }
@@ -567,22 +548,20 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     return detail::spectral_radius(f, map(std::as_const(x_)), map(std::as_const(dxdt_)), v, y1, f1);
   }
 
-  /// The stiffness test of a full window (OdeintOptions::stiffness_window): throws
-  /// StiffSceneError, or starts the next window.
-  void stiffness_test(double t_out) {
+  /// The stiffness test (detail::looks_stiff) on a full window's attempts (stiffness_window:
+  /// throws StiffSceneError, or starts the next window) or, `spent`, this advance's, whose step
+  /// budget is spent (throws, saying whether the scene looks stiff).
+  void stiffness_test(double t_out, bool spent = false) {
     double h_rho = 0.0;
-    if (detail::looks_stiff(
-            window_, t_, [this] { return spectral_radius(); }, h_rho)) {
+    const bool stiff = detail::looks_stiff(
+        spent ? run_ : window_, t_, [this] { return spectral_radius(); }, h_rho);
+    if (spent) {
+      detail::throw_out_of_budget(run_, options_.max_steps, t_, t_out, stiff, h_rho);
+    }
+    if (stiff) {
       detail::throw_stiff_window(window_, t_, h_rho, t_out);
     }
     window_ = detail::StepRun{.t_start = t_};
-  }
-
-  [[noreturn]] void out_of_budget(double t_out) {
-    double h_rho = 0.0;
-    const bool stiff = detail::looks_stiff(
-        run_, t_, [this] { return spectral_radius(); }, h_rho);
-    detail::throw_out_of_budget(run_, options_.max_steps, t_, t_out, stiff, h_rho);
   }
 
   /// Copies the current state into state_; no allocation.

@@ -37,6 +37,7 @@
 #include "tumble/core/errors.hpp"
 #include "tumble/integrate/common.hpp"
 #include "tumble/integrate/cvode.hpp"
+#include "tumble/integrate/detail/event_action.hpp"
 #include "tumble/integrate/detail/state_check.hpp"
 #include "tumble/integrate/errors.hpp"
 #include "tumble/scene/assembly.hpp"
@@ -164,14 +165,7 @@ template <class SceneT> class SceneSystem {
         ++events_;
       }
       if (which[first + i] != 0 && events[i].action) {
-        event_state_.y = y;
-        event_state_.base = base_;
-        events[i].action(t, event_state_);
-        if (event_state_.y.size() != y.size() || event_state_.base.size() != base_.size()) {
-          throw std::invalid_argument("tumble::Event: an action changed the size of the state");
-        }
-        y = event_state_.y;
-        base_ = event_state_.base;
+        detail::apply_event_action(events[i], t, event_state_, y, base_);
         changed = true;
       }
     }

@@ -14,6 +14,7 @@
 
 #include "tumble/core/format.hpp"
 #include "tumble/ensemble/outcome.hpp"
+#include "tumble/integrate/common.hpp"
 #include "tumble/scene/state.hpp"
 
 namespace tumble {
@@ -45,16 +46,7 @@ template <class Times> void check_output_times(double t0, const Times& times) {
   if (!std::isfinite(t0)) {
     throw std::invalid_argument("tumble::Ensemble: the start time is not finite");
   }
-  double last = t0;
-  for (const auto& value : times) {
-    const double t = static_cast<double>(value);
-    if (!std::isfinite(t) || t < last) {
-      throw std::invalid_argument("tumble::Ensemble: the output times must be finite, "
-                                  "non-decreasing and not before the start time; found " +
-                                  format_double(t) + " after " + format_double(last));
-    }
-    last = t;
-  }
+  check_output_times("tumble::Ensemble", t0, times, "the start time");
 }
 
 /// Integrates over the output times with the integrator's own integrate() and calls

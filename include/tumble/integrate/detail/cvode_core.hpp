@@ -111,28 +111,14 @@ template <class System> class CvodeCore {
   }
 
   template <class Times, class Observer> void integrate(const Times& times, Observer& observer) {
-    bool first = true;
-    double previous = t_;
-    for (const auto& value : times) {  // validate every output time before integrating
+    check_output_times("tumble::Cvode::integrate", t_, times);
+    for (const auto& value : times) {
       const double tk = static_cast<double>(value);
-      if (!std::isfinite(tk)) {
-        throw std::invalid_argument("tumble::Cvode::integrate: output time " + format_double(tk) +
-                                    " is not finite");
-      }
-      if (first ? tk < t_ : tk <= previous) {
-        throw std::invalid_argument(
-            "tumble::Cvode::integrate: output times must be increasing and not behind the "
-            "current time " +
-            format_double(t_) + " (got " + format_double(tk) + " after " + format_double(previous) +
-            ")");
-      }
       if (options_.stop_time && tk > *options_.stop_time) {
         throw std::invalid_argument("tumble::Cvode::integrate: output time " + format_double(tk) +
                                     " is after the stop time " +
                                     format_double(*options_.stop_time));
       }
-      previous = tk;
-      first = false;
     }
     for (const auto& value : times) {
       const double tk = static_cast<double>(value);
