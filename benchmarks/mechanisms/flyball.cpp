@@ -58,6 +58,32 @@ MechanismResult run_mechanism_a05(const MechanismPlan& plan, const std::function
                 "7(8) at 1e-12 (" +
                 duration(reference_seconds) + ")";
   r.rows = mechanism_sweep(plan, g.scene, times, record, measure, step);
+  // MuJoCo, when installed: its model from the example's data, measured by the same `slider`.
+  using namespace flyball;
+  const FlyballGovernor data{
+      .gravity = kG,
+      .shaft_mass = kBarMass,
+      .shaft_length = kBar,
+      .shaft_inertia = Eigen::Vector3d(kBarMass * (kBar * kBar + kSide * kSide) / 12,
+                                       kBarMass * (kBar * kBar + kSide * kSide) / 12,
+                                       kBarMass * 2 * kSide * kSide / 12),
+      .slider_mass = kCubeMass,
+      .slider_inertia = kCubeMass * 2 * kCube * kCube / 12,
+      .rod_mass = kRodMass,
+      .rod_length = kBar,
+      .rod_centroid = kRodCentroid,
+      .rod_axial = kRodAxial,
+      .rod_transverse = kRodTransverse,
+      .offset = kOffset,
+      .top = kBar,
+      .stiffness = kK,
+      .damping = kC,
+      .rest_length = kRest,
+      .s0 = kS0,
+      .alpha = kAlpha,
+      .spin = kSpin};
+  const std::vector<MechanismRow> peer = mujoco_a05_rows(data, times, slider, plan.timing);
+  r.rows.insert(r.rows.end(), peer.begin(), peer.end());
   return r;
 }
 

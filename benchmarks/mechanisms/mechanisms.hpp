@@ -7,7 +7,7 @@
 //   a04  Bricard's mechanism (A04), redundant: no closed form, a run at tight tolerance of its
 //        non-redundant twin (examples/bricard.cpp), stated as such
 //   a05  the stiff flyball governor (A05): a second model in four minimal coordinates
-//        (tests/joint/flyball_reference.hpp); no peer runs it yet
+//        (tests/joint/flyball_reference.hpp); MuJoCo runs it, Exudyn not yet
 // Each problem's scene type is instantiated in a translation unit of its own
 // (mechanisms/<problem>.cpp; the compiler's memory stays within CI's budget per process), which
 // runs tumble's integrators over a tolerance ladder with the same output times:
@@ -149,6 +149,24 @@ struct SpatialLinkage {
   Eigen::Vector3d track_point;  ///< at this point of its frame (m)
 };
 
+/// A05 as the peers build it (filled by mechanisms/flyball.cpp from examples/flyball.cpp's data),
+/// z up: the shaft hinged to the ground about z at the origin, the slider on it along z (turning
+/// with it), two rods, each with its ball one rigid body, hinged to the shaft's top at
+/// (+-offset, 0, top) about y and pointing outward and down, and a spring-damper from each rod's
+/// midpoint to the slider's point (+-offset, 0, s). All turn rigidly about z at the start.
+struct FlyballGovernor {
+  double gravity = 0;                                     ///< along -z (m/s^2)
+  double shaft_mass = 0, shaft_length = 0;                ///< kg, m (the shaft from z = 0 up)
+  Eigen::Vector3d shaft_inertia;                          ///< about its centroid (kg m^2)
+  double slider_mass = 0, slider_inertia = 0;             ///< kg; about any centroidal axis
+  double rod_mass = 0, rod_length = 0, rod_centroid = 0;  ///< kg, m, m from its hinge
+  double rod_axial = 0, rod_transverse = 0;  ///< about its centroid, along and across (kg m^2)
+  double offset = 0, top = 0;                ///< the hinges off the axis and their height (m)
+  double stiffness = 0, damping = 0, rest_length = 0;  ///< N/m, N s/m, m
+  double s0 = 0, alpha = 0, spin = 0;  ///< the slider's height, the rods' angle below the
+                                       ///< horizontal, the spin at t = 0 (m, rad, rad/s)
+};
+
 /// MuJoCo's fixed-step RK4 (mj_step, integrator="RK4") over a ladder of steps per output
 /// interval, each run timed as tumble's are (best of timing.reps, the model's construction not
 /// timed) and measured by the problem's own measure:
@@ -163,6 +181,12 @@ std::vector<MechanismRow> mujoco_a04_rows(const std::vector<double>& times, Poin
 std::vector<MechanismRow> mujoco_a03_rows(
     const PlanarLinkage& m, const std::vector<double>& times,
     const std::function<double(const std::vector<double>& angles)>& measure, const Timing& timing);
+
+/// A05: the governor `g` over `times`, the slider's height (as (s, 0, 0)) measured by `slider`;
+/// MuJoCo's RK4 and its implicitfast integrator (the dampers' forces implicit in the step).
+std::vector<MechanismRow> mujoco_a05_rows(const FlyballGovernor& g,
+                                          const std::vector<double>& times, PointTrackError& slider,
+                                          const Timing& timing);
 
 /// Whether Exudyn's rows run (the Python found at configure time imports exudyn).
 bool exudyn_available();

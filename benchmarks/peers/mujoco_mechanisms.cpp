@@ -17,6 +17,8 @@
 //   A04  five hinges from the ground along the cube's edges (as examples/bricard.cpp), the rods
 //        1 kg, 1 m, 0.1 m square, and the sixth hinge, at P5, closed by two <connect>s (P5 and
 //        a point 1 m along its axis: a hinge is two points of its axis);
+//   A05  an open tree (shaft, slider, two rods with their balls), the spring-dampers spatial
+//        tendons (stiffness, damping, springlength), run with RK4 and with implicitfast;
 //   A03  the links as a tree from the ground, built from the example's data by
 //        mechanisms/andrews.cpp (PlanarLinkage), the three hinges at E that close its loops as
 //        <connect>s, the spring a spatial tendon (stiffness, springlength), the motor a <motor>
@@ -132,8 +134,8 @@ void timed_run(mjModel& model, const std::vector<double>& times, int substeps, c
           std::abs(d->time - times.back()) > 1e-6 * times.back()) {
         throw std::runtime_error("unstable: MuJoCo found a bad state and reset the simulation");
       }
-      run.steps = steps;
-      run.rhs_evals = 4 * steps;  // RK4: four forward dynamics per step
+      run.steps = steps;  // RK4: four forward dynamics per step; Euler, implicitfast: one
+      run.rhs_evals = (model.opt.integrator == mjINT_RK4 ? 4 : 1) * steps;
       mj_fwdPosition(&model, d);
       run.constraint_drift = 0;
       for (int i = 0; i < d->nefc; ++i) {
@@ -361,6 +363,65 @@ std::vector<MechanismRow> mujoco_a03_rows(
   return rows;
 }
 
+std::vector<MechanismRow> mujoco_a05_rows(const FlyballGovernor& g,
+                                          const std::vector<double>& times, PointTrackError& slider,
+                                          const Timing& timing) {
+  // An open tree, no equality constraint: the shaft's hinge about z, the slider's slide along it
+  // and each rod's hinge about y (rod 1's frame turned half a turn about z, so that both rods
+  // point outward along their own +x and turn down by +beta). The spring-dampers are spatial
+  // tendons; the keyframe sets qpos = (0, s0, alpha, alpha) and the spin. With RK4 the dampers
+  // bound the step (explicit); implicitfast, which MuJoCo recommends for stiff damping, takes
+  // their forces implicitly (and leaves out only the Coriolis and centripetal derivatives).
+  const auto mjcf = [&](const char* integrator) {
+    std::ostringstream os;
+    os.precision(17);
+    os << "<mujoco model=\"A05\"><option integrator=\"" << integrator << "\" gravity=\""
+       << vec(0, 0, -g.gravity) << "\"/><worldbody><body name=\"shaft\">"
+       << "<joint name=\"spin\" type=\"hinge\" axis=\"0 0 1\"/><inertial pos=\""
+       << vec(0, 0, 0.5 * g.shaft_length) << "\" mass=\"" << g.shaft_mass << "\" diaginertia=\""
+       << vec(g.shaft_inertia.x(), g.shaft_inertia.y(), g.shaft_inertia.z()) << "\"/>"
+       << "<body name=\"slider\"><joint name=\"s\" type=\"slide\" axis=\"0 0 1\"/>"
+       << "<inertial pos=\"0 0 0\" mass=\"" << g.slider_mass << "\" diaginertia=\""
+       << vec(g.slider_inertia, g.slider_inertia, g.slider_inertia) << "\"/>"
+       << "<site name=\"slider0\" pos=\"" << vec(g.offset, 0, 0)
+       << "\"/><site name=\"slider1\" pos=\"" << vec(-g.offset, 0, 0) << "\"/></body>";
+    for (int k = 0; k < 2; ++k) {
+      os << "<body name=\"rod" << k << "\" pos=\"" << vec(k == 0 ? g.offset : -g.offset, 0, g.top)
+         << "\" euler=\"0 0 " << 180 * k << "\"><joint type=\"hinge\" axis=\"0 1 0\"/>"
+         << "<inertial pos=\"" << vec(g.rod_centroid, 0, 0) << "\" mass=\"" << g.rod_mass
+         << "\" diaginertia=\"" << vec(g.rod_axial, g.rod_transverse, g.rod_transverse) << "\"/>"
+         << "<site name=\"rod" << k << "\" pos=\"" << vec(0.5 * g.rod_length, 0, 0)
+         << "\"/></body>";
+    }
+    os << "</body></worldbody><tendon>";
+    for (int k = 0; k < 2; ++k) {
+      os << "<spatial stiffness=\"" << g.stiffness << "\" damping=\"" << g.damping
+         << "\" springlength=\"" << g.rest_length << "\"><site site=\"rod" << k
+         << "\"/><site site=\"slider" << k << "\"/></spatial>";
+    }
+    os << "</tendon><keyframe><key qpos=\"0 " << g.s0 << ' ' << g.alpha << ' ' << g.alpha
+       << "\" qvel=\"" << g.spin << " 0 0 0\"/></keyframe></mujoco>";
+    return os.str();
+  };
+  auto record = [&slider, s = -1](std::size_t k, const mjModel& m, const mjData& d) mutable {
+    if (s < 0) {
+      s = m.jnt_qposadr[mj_name2id(&m, mjOBJ_JOINT, "s")];
+    }
+    slider.record(k, Eigen::Vector3d(d.qpos[s], 0, 0));
+  };
+  const auto measure = [&] { return slider.measure(); };
+  // RK4 is unstable above h of about 1e-4 s here (the dampers: C / m of the slider is 1.3e4 /s);
+  // the ladders start where a step still ends, so that the rows show where accuracy begins.
+  std::vector<MechanismRow> rows = rk4_sweep(
+      "MuJoCo RK4", [&](double) { return mjcf("RK4"); }, times, doubling(64, 4096), timing, record,
+      measure);
+  auto implicit = rk4_sweep(
+      "MuJoCo implicitfast", [&](double) { return mjcf("implicitfast"); }, times,
+      doubling(4, 16384), timing, record, measure);
+  rows.insert(rows.end(), implicit.begin(), implicit.end());
+  return rows;
+}
+
 }  // namespace tumble::bench
 
 #else
@@ -379,6 +440,11 @@ std::vector<MechanismRow> mujoco_a03_rows(
     const PlanarLinkage& /*m*/, const std::vector<double>& /*times*/,
     const std::function<double(const std::vector<double>& angles)>& /*measure*/,
     const Timing& /*timing*/) {
+  return {};
+}
+std::vector<MechanismRow> mujoco_a05_rows(const FlyballGovernor& /*g*/,
+                                          const std::vector<double>& /*times*/,
+                                          PointTrackError& /*slider*/, const Timing& /*timing*/) {
   return {};
 }
 
