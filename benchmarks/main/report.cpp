@@ -182,7 +182,7 @@ std::string header_text(const Options& o, const std::filesystem::path& out, int 
        "on\n"
     << "            problems with exact answers, (c) cost per step against the number of bodies,\n"
     << "            (d) runs per second of an ensemble against threads and MPI processes,\n"
-    << "            (e) run time to reach an error on IFToMM mechanisms (A01, A03-A05)\n"
+    << "            (e) run time to reach an error on IFToMM mechanisms (A01-A05)\n"
     << "  machine   " << first_line("/proc/cpuinfo", "model name") << ", "
     << std::thread::hardware_concurrency() << " hardware threads, load " << load << "\n"
     << "  build     " << compiler() << ", " << TUMBLE_BENCH_BUILD_TYPE << " ("

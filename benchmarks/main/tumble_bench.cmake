@@ -77,6 +77,7 @@ if(TARGET tumble::odeint)
   target_sources(tumble_bench PRIVATE
     work_precision/tumble_d.cpp   # method: tumble's scenes under OdeintIntegrator
     mechanisms/pendulum.cpp       # mechanism: IFToMM A01, the simple pendulum
+    mechanisms/four_bar.cpp       # mechanism: IFToMM A02, the N-four-bar
     mechanisms/andrews.cpp        # mechanism: IFToMM A03, Andrews' squeezing mechanism
     mechanisms/bricard.cpp        # mechanism: IFToMM A04, Bricard's mechanism
     mechanisms/flyball.cpp        # mechanism: IFToMM A05, the stiff flyball governor

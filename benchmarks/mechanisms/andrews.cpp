@@ -113,17 +113,18 @@ MechanismResult run_mechanism_a03(const MechanismPlan& plan, const std::function
   r.rows = mechanism_sweep(plan, m.scene, times, record, measure, step);
   // MuJoCo, when installed: the same output times, the links' absolute angles at the last one
   // measured by the same mixed measure against the same q_ref. Exudyn likewise.
-  const auto peer_measure = [&](const std::vector<double>& angles) {
+  const PlanarMeasure peer_measure = [&](const std::vector<std::vector<double>>& angles) {
     andrews::Angles last{};
-    std::copy(angles.begin(), angles.end(), last.begin());
+    std::copy(angles.back().begin(), angles.back().end(), last.begin());
     return andrews::mixed_error(andrews::relative(last), q_ref);
   };
   const PlanarLinkage linkage = peer_linkage(m);
-  const std::vector<MechanismRow> peer = mujoco_a03_rows(linkage, times, peer_measure, plan.timing);
+  const std::vector<MechanismRow> peer =
+      mujoco_planar_rows("a03", linkage, times, peer_measure, plan.timing);
   r.rows.insert(r.rows.end(), peer.begin(), peer.end());
   // Exudyn, when installed: the same linkage, outputs and measure.
   const std::vector<MechanismRow> exudyn =
-      exudyn_a03_rows(linkage, times, peer_measure, plan.timing);
+      exudyn_planar_rows("a03", linkage, times, peer_measure, plan.timing);
   r.rows.insert(r.rows.end(), exudyn.begin(), exudyn.end());
   return r;
 }

@@ -2,6 +2,8 @@
 // tumble_bench, study (e): work precision on the IFToMM multibody benchmark problems (group A),
 // mechanisms of rigid bodies and joints, each with a reference independent of tumble's run:
 //   a01  the simple pendulum (A01): the closed form in Jacobi's sn (tests/support/pendulum.hpp)
+//   a02  the N-four-bar (A02), N = 2, through its singular positions: a second model in the
+//        cranks' angle (tests/joint/n_four_bar_reference.hpp)
 //   a03  Andrews' squeezing mechanism (A03): a second model in the Test Set's seven joint angles,
 //        integrated in long double (tests/joint/andrews_reference.hpp)
 //   a04  Bricard's mechanism (A04), redundant: no closed form, a run at tight tolerance of its
@@ -85,6 +87,7 @@ std::vector<MechanismProblem> mechanism_problems();
 std::vector<double> mechanism_tolerances(bool full);
 
 MechanismResult run_mechanism_a01(const MechanismPlan& plan, const std::function<void()>& step);
+MechanismResult run_mechanism_a02(const MechanismPlan& plan, const std::function<void()>& step);
 MechanismResult run_mechanism_a03(const MechanismPlan& plan, const std::function<void()>& step);
 MechanismResult run_mechanism_a04(const MechanismPlan& plan, const std::function<void()>& step);
 MechanismResult run_mechanism_a05(const MechanismPlan& plan, const std::function<void()>& step);
@@ -95,9 +98,11 @@ MechanismResult run_mechanism_a05(const MechanismPlan& plan, const std::function
 class PointTrackError;  // mechanisms/track.hpp
 
 /// A planar linkage of hinges about z as the peers build it (A03, filled by mechanisms/andrews.cpp
-/// from the example's data): an open tree of links from the ground, the hinges that close its
-/// loops, a spring to the ground and a constant torque. Positions are in the world (x, y) in the
-/// starting configuration, in which the mechanism is at rest.
+/// from the example's data; A02, by mechanisms/four_bar.cpp): an open tree of links from the
+/// ground, the hinges that close its loops, uniform gravity in the plane, and optionally a spring
+/// to the ground and a constant torque. Positions are in the world (x, y) in the starting
+/// configuration; each link turns at its `rate` there (A03 starts at rest), and the rates must
+/// close the loops (the peers take them as they are).
 struct PlanarLinkage {
   struct Link {
     int parent = -1;           ///< the link it hangs from in the tree (its index); -1: ground
@@ -106,6 +111,7 @@ struct PlanarLinkage {
     double angle = 0;          ///< its absolute angle about z at the start (rad)
     double mass = 0;           ///< kg
     double inertia = 0;        ///< about z at the centroid (kg m^2)
+    double rate = 0;           ///< its absolute angular rate about z at the start (rad/s)
   };
   struct Loop {  ///< a hinge closing a loop between links a and b (b = -1: the ground)
     int a = 0, b = 0;
@@ -113,12 +119,22 @@ struct PlanarLinkage {
   };
   std::vector<Link> links;
   std::vector<Loop> loops;
-  int spring_link = 0;  ///< a linear spring from a point of this link to a point of the ground
-  Eigen::Vector2d spring_on_link, spring_on_ground;  ///< (m)
-  double stiffness = 0, rest_length = 0;             ///< N/m, m
-  int motor_link = 0;                                ///< a constant torque about z on this link
-  double torque = 0;                                 ///< N m
+  Eigen::Vector2d gravity = Eigen::Vector2d::Zero();  ///< on every link (m/s^2)
+  /// A linear spring from a point of link `spring_link` to a point of the ground; none when the
+  /// stiffness is 0.
+  int spring_link = 0;
+  Eigen::Vector2d spring_on_link = Eigen::Vector2d::Zero();    ///< (m)
+  Eigen::Vector2d spring_on_ground = Eigen::Vector2d::Zero();  ///< (m)
+  double stiffness = 0, rest_length = 0;                       ///< N/m, m
+  /// A constant torque about z on link `motor_link`; none when it is 0.
+  int motor_link = 0;
+  double torque = 0;  ///< N m
 };
+
+/// A planar linkage's error measure, shared by tumble's runs and the peers': `angles[k][i]`,
+/// link i's absolute angle about z at output k (rad, followed over the turns), gives the run's
+/// error. Every output is there (a run that did not reach one is not measured).
+using PlanarMeasure = std::function<double(const std::vector<std::vector<double>>& angles)>;
 
 /// A01 as the peers build it (filled by mechanisms/pendulum.cpp with the data of its scene): a
 /// bob, a ball framed at its centroid, on a massless bar with spherical ends from a fixed pivot,
@@ -176,11 +192,11 @@ std::vector<MechanismRow> mujoco_a01_rows(const std::vector<double>& times, Poin
 /// A04: P3's track at `times`, measured by `p3` (the twin's reference);
 std::vector<MechanismRow> mujoco_a04_rows(const std::vector<double>& times, PointTrackError& p3,
                                           const Timing& timing);
-/// A03: the linkage `m` over `times`; `measure` takes the links' absolute angles at the last
-/// output (followed over the turns) and gives the problem's error.
-std::vector<MechanismRow> mujoco_a03_rows(
-    const PlanarLinkage& m, const std::vector<double>& times,
-    const std::function<double(const std::vector<double>& angles)>& measure, const Timing& timing);
+/// A02, A03: the linkage `m` of problem `id` ("a03": the model's name) over `times`, the links'
+/// absolute angles at every output (the hinge angles summed along the tree) measured by `measure`.
+std::vector<MechanismRow> mujoco_planar_rows(const std::string& id, const PlanarLinkage& m,
+                                             const std::vector<double>& times,
+                                             const PlanarMeasure& measure, const Timing& timing);
 
 /// A05: the governor `g` over `times`, the slider's height (as (s, 0, 0)) measured by `slider`;
 /// MuJoCo's RK4 and its implicitfast integrator (the dampers' forces implicit in the step).
@@ -200,9 +216,10 @@ std::vector<MechanismRow> exudyn_a01_rows(const BarPendulum& p, const std::vecto
 /// A04: the linkage `l`, its tracked point at `times` measured by `p3`;
 std::vector<MechanismRow> exudyn_a04_rows(const SpatialLinkage& l, const std::vector<double>& times,
                                           PointTrackError& p3, const Timing& timing);
-/// A03: the linkage `m` over `times`, the links' absolute angles at the last output to `measure`.
-std::vector<MechanismRow> exudyn_a03_rows(
-    const PlanarLinkage& m, const std::vector<double>& times,
-    const std::function<double(const std::vector<double>& angles)>& measure, const Timing& timing);
+/// A02, A03: the linkage `m` of problem `id` over `times`, the links' absolute angles at every
+/// output measured by `measure`.
+std::vector<MechanismRow> exudyn_planar_rows(const std::string& id, const PlanarLinkage& m,
+                                             const std::vector<double>& times,
+                                             const PlanarMeasure& measure, const Timing& timing);
 
 }  // namespace tumble::bench

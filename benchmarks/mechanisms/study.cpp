@@ -29,6 +29,7 @@ std::vector<MechanismProblem> mechanism_problems() {
   // a Python process on peers/exudyn_mechanisms.py), each when installed.
 #if TUMBLE_BENCH_HAVE_TUMBLE_ODEINT
   return {{"a01", &run_mechanism_a01},
+          {"a02", &run_mechanism_a02},
           {"a03", &run_mechanism_a03},
           {"a04", &run_mechanism_a04},
           {"a05", &run_mechanism_a05}};

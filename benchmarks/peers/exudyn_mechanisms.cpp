@@ -10,8 +10,8 @@
 // the ladder of steps and tumble's Timing to a JSON file, runs peers/exudyn_mechanisms.py on it,
 // and reads back, for each run, its times, counters and what the problem measures. The script
 // builds the model in Exudyn (its top comment describes the models and settings), times only
-// exu.SolveDynamic and writes the tracked point at each output (A01, A04) or the links' absolute
-// angles at the last (A03); the error is computed here, by the very object that measures
+// exu.SolveDynamic and writes the tracked point (A01, A04) or the links' absolute angles (A02,
+// A03) at each output; the error is computed here, by the very object that measures
 // tumble's rows. A failure of the script (a Python error, a missing module) is reported on stderr
 // and gives no rows; a run that Exudyn fails (Newton diverging at a coarse step) is a failed row.
 //
@@ -256,46 +256,62 @@ std::vector<MechanismRow> exudyn_a04_rows(const SpatialLinkage& l, const std::ve
   return point_rows("a04", os.str(), p3, timing);
 }
 
-std::vector<MechanismRow> exudyn_a03_rows(
-    const PlanarLinkage& m, const std::vector<double>& times,
-    const std::function<double(const std::vector<double>& angles)>& measure, const Timing& timing) {
+std::vector<MechanismRow> exudyn_planar_rows(const std::string& id, const PlanarLinkage& m,
+                                             const std::vector<double>& times,
+                                             const PlanarMeasure& measure, const Timing& timing) {
   std::ostringstream os;
   os.precision(17);
-  os << common_json("a03", times, doubling(1, 1024), timing) << ", \"linkage\": {\"links\": [";
+  os << common_json(id.c_str(), times, doubling(1, 1024), timing) << ", \"linkage\": {\"links\": [";
   for (std::size_t i = 0; i < m.links.size(); ++i) {
     const PlanarLinkage::Link& k = m.links[i];
     os << (i ? ", " : "") << "{\"parent\": " << k.parent << ", \"hinge\": " << json(k.hinge)
        << ", \"centroid\": " << json(k.centroid) << ", \"angle\": " << k.angle
-       << ", \"mass\": " << k.mass << ", \"inertia\": " << k.inertia << "}";
+       << ", \"mass\": " << k.mass << ", \"inertia\": " << k.inertia << ", \"rate\": " << k.rate
+       << "}";
   }
   os << "], \"loops\": [";
   for (std::size_t i = 0; i < m.loops.size(); ++i) {
     os << (i ? ", " : "") << "{\"a\": " << m.loops[i].a << ", \"b\": " << m.loops[i].b
        << ", \"at\": " << json(m.loops[i].at) << "}";
   }
-  os << "], \"spring_link\": " << m.spring_link
+  os << "], \"gravity\": " << json(m.gravity) << ", \"spring_link\": " << m.spring_link
      << ", \"spring_on_link\": " << json(m.spring_on_link)
      << ", \"spring_on_ground\": " << json(m.spring_on_ground) << ", \"stiffness\": " << m.stiffness
      << ", \"rest_length\": " << m.rest_length << ", \"motor_link\": " << m.motor_link
      << ", \"torque\": " << m.torque << "}";
+  // The links' absolute angles at every output (NaN: not written) of the run being read.
+  const std::vector<double> unset(m.links.size(), std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::vector<double>> angles(times.size(), unset);
+  const auto measure_run = [&](MechanismRow& row) {
+    const bool complete = std::none_of(angles.begin(), angles.end(), [](const auto& at) {
+      return std::any_of(at.begin(), at.end(), [](double a) { return std::isnan(a); });
+    });
+    if (row.run.ok && complete) {
+      row.error = measure(angles);
+    }
+    std::fill(angles.begin(), angles.end(), unset);
+  };
   std::vector<MechanismRow> rows;
   try {
-    for (const std::vector<std::string>& f : run_script("a03", os.str())) {
+    for (const std::vector<std::string>& f : run_script(id, os.str())) {
       if (f.front() == "run") {
-        rows.push_back(parse_run(f, timing));
-      } else if (f.front() == "angles" && !rows.empty() && rows.back().run.ok) {
-        std::vector<double> angles;
-        for (std::size_t i = 1; i < f.size(); ++i) {
-          angles.push_back(std::stod(f[i]));
+        if (!rows.empty()) {
+          measure_run(rows.back());
         }
-        if (angles.size() == m.links.size()) {
-          rows.back().error = measure(angles);
+        rows.push_back(parse_run(f, timing));
+      } else if (f.front() == "angles" && f.size() == m.links.size() + 2) {
+        const std::size_t k = std::stoul(f[1]);
+        for (std::size_t i = 0; k < angles.size() && i < m.links.size(); ++i) {
+          angles[k][i] = std::stod(f[i + 2]);
         }
       }
     }
+    if (!rows.empty()) {
+      measure_run(rows.back());
+    }
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "tumble_bench: Exudyn on a03: unreadable output (%s); no Exudyn rows\n",
-                 e.what());
+    std::fprintf(stderr, "tumble_bench: Exudyn on %s: unreadable output (%s); no Exudyn rows\n",
+                 id.c_str(), e.what());
     rows.clear();
   }
   return rows;
@@ -319,10 +335,10 @@ std::vector<MechanismRow> exudyn_a04_rows(const SpatialLinkage& /*l*/,
                                           PointTrackError& /*p3*/, const Timing& /*timing*/) {
   return {};
 }
-std::vector<MechanismRow> exudyn_a03_rows(
-    const PlanarLinkage& /*m*/, const std::vector<double>& /*times*/,
-    const std::function<double(const std::vector<double>& angles)>& /*measure*/,
-    const Timing& /*timing*/) {
+std::vector<MechanismRow> exudyn_planar_rows(const std::string& /*id*/, const PlanarLinkage& /*m*/,
+                                             const std::vector<double>& /*times*/,
+                                             const PlanarMeasure& /*measure*/,
+                                             const Timing& /*timing*/) {
   return {};
 }
 

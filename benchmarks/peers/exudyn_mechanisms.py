@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""tumble_bench, study (e): Exudyn on the IFToMM mechanisms A01, A03 and A04.
+"""tumble_bench, study (e): Exudyn on the IFToMM mechanisms A01, A02, A03 and A04.
 
 Run by peers/exudyn_mechanisms.cpp through the Python found at configure time:
 
     python exudyn_mechanisms.py INPUT.json OUTPUT.txt
 
 INPUT (written by the C++ side from the data of tumble's own problem):
-    problem   "a01", "a03" or "a04"
+    problem   "a01", "a02", "a03" or "a04"
     times     the output times (s), increasing, from the first output to the end
     ladder    steps per output interval, one run per entry (the step h = first time / entry)
     solvers   Exudyn's DynamicSolverType names to run, e.g. ["GeneralizedAlpha"]
@@ -15,7 +15,8 @@ INPUT (written by the C++ side from the data of tumble's own problem):
     budget    s: a ladder stops after a run that took longer (the finer steps would take longer)
     pendulum  A01: mass (kg), inertia (kg m^2, about the centroid, isotropic), pivot, start,
               gravity (m, m/s^2); the bob hangs on a massless bar of |start - pivot|
-    linkage   A03: mechanisms.hpp's PlanarLinkage (links, loops, spring, motor)
+    linkage   A02, A03: mechanisms.hpp's PlanarLinkage (links with their starting rates, loops,
+              gravity, spring and motor: none when the stiffness or the torque is 0)
     spatial   A04: bodies (centroid, rotation body -> world, mass, inertia about the centroid in
               body axes), hinges (bodies a, b, -1 the ground; a point and an axis in the world),
               gravity, the tracked point (body, point in body axes)
@@ -23,23 +24,22 @@ INPUT (written by the C++ side from the data of tumble's own problem):
 OUTPUT, tab-separated lines (a file, since Exudyn prints on stdout):
     run  solver  substeps  h  ok  steps  newton_iterations  jacobians  |C|  walls  cpus  message
     point  k  x  y  z         A01/A04: the tracked point at output k (after each successful run)
-    angles  a0  a1 ...        A03: the links' absolute angles at the last output (rad)
+    angles  k  a0  a1 ...     A02/A03: the links' absolute angles at output k (rad, over the turns)
     end                       written last: the file is complete
 
 The models are in absolute coordinates, as tumble's: A01 and A04 rigid bodies with Euler
-parameters (NodeRigidBodyEP, ObjectRigidBody), A03 planar rigid bodies (NodeRigidBody2D: x, y and
-the angle per link, Exudyn's element for a planar linkage, which avoids the nine redundant rows
-of spatial hinges in a plane). Exudyn's explicit solvers refuse joints (its documentation:
-"explicit solvers are in general only applicable for systems without constraints"), so the
-solvers are the implicit index-3 generalized-alpha and the index-2 trapezoidal rule, both of
-second order, over a ladder of fixed steps. Only exu.SolveDynamic is timed (it includes the
-solver's initialization, as tumble's rows include their integrator's construction); building and
-assembling the model is not.
+parameters (NodeRigidBodyEP, ObjectRigidBody), A02 and A03 planar rigid bodies (NodeRigidBody2D:
+x, y and the angle per link, Exudyn's element for a planar linkage, which avoids the nine
+redundant rows of spatial hinges in a plane). Exudyn's explicit solvers refuse joints (its
+documentation: "explicit solvers are in general only applicable for systems without
+constraints"), so the solvers are the implicit index-3 generalized-alpha and the index-2
+trapezoidal rule, both of second order, over a ladder of fixed steps. Only exu.SolveDynamic is
+timed (it includes the solver's initialization, as tumble's rows include their integrator's
+construction); building and assembling the model is not.
 """
 
 import json
 import math
-import os
 import sys
 import time
 import traceback
@@ -51,7 +51,7 @@ from exudyn.itemInterface import (  # noqa: E402
     LoadMassProportional, LoadTorqueVector, MarkerBodyMass, MarkerBodyPosition, MarkerBodyRigid,
     NodeRigidBody2D, NodeRigidBodyEP, ObjectConnectorDistance, ObjectConnectorSpringDamper,
     ObjectGround, ObjectJointRevolute2D, ObjectJointRevoluteZ, ObjectRigidBody,
-    ObjectRigidBody2D, SensorBody)
+    ObjectRigidBody2D, SensorBody, SensorNode)
 from exudyn.rigidBodyUtilities import RotationMatrix2EulerParameters  # noqa: E402
 
 
@@ -74,7 +74,7 @@ class Model:
         self.ground = self.mbs.AddObject(ObjectGround())
         self.sensor = None  # the tracked point (A01, A04)
         self.pairs = []  # (body, local point, body, local point) that must coincide: |C|
-        self.angles = None  # A03: a function giving the links' absolute angles
+        self.nodes = None  # A02/A03: (sensor, starting angle) per link, its angle stored
         self.redundant = False  # A04: constraint rows of deficient rank
 
     def point(self, body, local):
@@ -161,20 +161,38 @@ def spatial(data):
 
 
 def planar(data):
-    """A03: a NodeRigidBody2D (x, y, angle) per link at its centroid, a JointRevolute2D per hinge
-    (each link's to its parent, and the loops'), the spring an ObjectConnectorSpringDamper from D
-    to C, the motor a LoadTorqueVector about z on the crank."""
+    """A02, A03: a NodeRigidBody2D (x, y, angle) per link at its centroid, a JointRevolute2D per
+    hinge (each link's to its parent, and the loops'), gravity by LoadMassProportional; the spring,
+    when there is one, an ObjectConnectorSpringDamper from D to C, the motor, when there is one, a
+    LoadTorqueVector about z on the crank. The starting velocities are the nodes' (absolute
+    coordinates): each centroid's, from the links' rates along the tree."""
     m = Model()
     mbs = m.mbs
     links = data["links"]
+
+    def velocity(index, at):  # the velocity of link `index`'s point at `at` (x, y) at the start
+        if index < 0:
+            return np.zeros(2)
+        link = links[index]
+        r = np.asarray(at, float) - np.asarray(link["hinge"], float)
+        w = link.get("rate", 0.0)  # w x r in the plane: w (-r_y, r_x)
+        return velocity(link["parent"], link["hinge"]) + w * np.array([-r[1], r[0]])
+
     nodes, bodies = [], []
-    for link in links:
+    gravity = list(data.get("gravity", [0.0, 0.0])) + [0.0]
+    for i, link in enumerate(links):
         c = link["centroid"]
-        nodes.append(mbs.AddNode(NodeRigidBody2D(referenceCoordinates=[c[0], c[1],
-                                                                       link["angle"]])))
+        v = velocity(i, c)
+        nodes.append(mbs.AddNode(NodeRigidBody2D(
+            referenceCoordinates=[c[0], c[1], link["angle"]],
+            initialVelocities=[float(v[0]), float(v[1]), link.get("rate", 0.0)])))
         bodies.append(mbs.AddObject(ObjectRigidBody2D(mass=link["mass"],
                                                       inertia=link["inertia"],
                                                       nodeNumber=nodes[-1])))
+        if any(gravity):
+            mbs.AddLoad(LoadMassProportional(
+                markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=bodies[-1])),
+                loadVector=gravity))
 
     def local(index, at):  # a world point (x, y) of the starting configuration in link axes
         link = links[index]
@@ -201,17 +219,21 @@ def planar(data):
         hinge(i, link["parent"], link["hinge"])
     for loop in data["loops"]:
         hinge(loop["a"], loop["b"], loop["at"])
-    on_link = marker(data["spring_link"], data["spring_on_link"])[0]
-    on_ground = marker(-1, data["spring_on_ground"])[0]
-    mbs.AddObject(ObjectConnectorSpringDamper(markerNumbers=[on_link, on_ground],
-                                              stiffness=data["stiffness"], damping=0.0,
-                                              referenceLength=data["rest_length"]))
-    motor = mbs.AddMarker(MarkerBodyRigid(bodyNumber=bodies[data["motor_link"]],
-                                          localPosition=[0, 0, 0]))
-    mbs.AddLoad(LoadTorqueVector(markerNumber=motor, loadVector=[0, 0, data["torque"]]))
-    # The angle is a coordinate of the node, counted over the turns (reference + displacement).
-    m.angles = lambda: [links[i]["angle"] + float(mbs.GetNodeOutput(
-        nodes[i], exu.OutputVariableType.Coordinates)[2]) for i in range(len(links))]
+    if data["stiffness"] != 0:
+        on_link = marker(data["spring_link"], data["spring_on_link"])[0]
+        on_ground = marker(-1, data["spring_on_ground"])[0]
+        mbs.AddObject(ObjectConnectorSpringDamper(markerNumbers=[on_link, on_ground],
+                                                  stiffness=data["stiffness"], damping=0.0,
+                                                  referenceLength=data["rest_length"]))
+    if data["torque"] != 0:
+        motor = mbs.AddMarker(MarkerBodyRigid(bodyNumber=bodies[data["motor_link"]],
+                                              localPosition=[0, 0, 0]))
+        mbs.AddLoad(LoadTorqueVector(markerNumber=motor, loadVector=[0, 0, data["torque"]]))
+    # The angle is a coordinate of the node, counted over the turns (reference + displacement):
+    # a sensor per node stores its coordinates (x, y, angle displacement) at every output.
+    m.nodes = [(mbs.AddSensor(SensorNode(nodeNumber=n, storeInternal=True, writeToFile=False,
+                                         outputVariableType=exu.OutputVariableType.Coordinates)),
+                link["angle"]) for n, link in zip(nodes, links)]
     return m
 
 
@@ -243,6 +265,19 @@ def settings(model, solver, t_end, steps, write_period):
     return s
 
 
+def outputs(stored, times):
+    """The rows of a sensor's stored data (time first) at the output times; ValueError when one
+    is missing."""
+    stored = np.asarray(stored)
+    rows = []
+    for t in times:
+        i = int(np.argmin(np.abs(stored[:, 0] - t)))
+        if abs(stored[i, 0] - t) > 1e-9 * t:
+            raise ValueError(f"no sensor output at t = {t} s")
+        rows.append(stored[i])
+    return rows
+
+
 def run(data, build, solver, substeps, out):
     times = data["times"]
     h = times[0] / substeps
@@ -270,16 +305,19 @@ def run(data, build, solver, substeps, out):
         ok, message = False, "Exudyn: " + (str(e) or type(e).__name__)
     drift = model.residual() if ok else float("nan")
     record = []
-    if ok and model.sensor is not None:
-        stored = np.asarray(model.mbs.GetSensorStoredData(model.sensor))
-        for k, t in enumerate(times):
-            i = int(np.argmin(np.abs(stored[:, 0] - t)))
-            if abs(stored[i, 0] - t) > 1e-9 * t:
-                ok, message = False, f"no sensor output at t = {t} s"
-                break
-            record.append("point\t%d\t%.17g\t%.17g\t%.17g" % ((k,) + tuple(stored[i, 1:4])))
-    if ok and model.angles is not None:
-        record.append("angles\t" + "\t".join("%.17g" % a for a in model.angles()))
+    try:
+        if ok and model.sensor is not None:
+            stored = outputs(model.mbs.GetSensorStoredData(model.sensor), times)
+            record = ["point\t%d\t%.17g\t%.17g\t%.17g" % ((k,) + tuple(row[1:4]))
+                      for k, row in enumerate(stored)]
+        if ok and model.nodes is not None:
+            stored = [outputs(model.mbs.GetSensorStoredData(sensor), times)
+                      for sensor, _ in model.nodes]
+            record = ["angles\t%d\t" % k + "\t".join(
+                "%.17g" % (angle + rows[k][3]) for rows, (_, angle) in zip(stored, model.nodes))
+                for k in range(len(times))]
+    except ValueError as e:
+        ok, message, record = False, str(e), []
     fields = [solver, substeps, "%.17g" % h, int(ok), *stats, "%.17g" % drift,
               ",".join("%.9g" % w for w in walls), ",".join("%.9g" % c for c in cpus),
               " ".join(message.split())]
@@ -298,6 +336,7 @@ def main():
     with open(sys.argv[1]) as f:
         data = json.load(f)
     builders = {"a01": lambda: pendulum(data["pendulum"]),
+                "a02": lambda: planar(data["linkage"]),
                 "a03": lambda: planar(data["linkage"]),
                 "a04": lambda: spatial(data["spatial"])}
     build = builders[data["problem"]]

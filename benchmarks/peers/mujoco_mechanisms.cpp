@@ -22,7 +22,12 @@
 //   A03  the links as a tree from the ground, built from the example's data by
 //        mechanisms/andrews.cpp (PlanarLinkage), the three hinges at E that close its loops as
 //        <connect>s, the spring a spatial tendon (stiffness, springlength), the motor a <motor>
-//        actuator whose ctrl, the constant torque, a keyframe sets.
+//        actuator whose ctrl, the constant torque, a keyframe sets;
+//   A02  the same construction from mechanisms/four_bar.cpp's PlanarLinkage: the cranks hinged
+//        to the ground, each coupler hanging from its crank's tip, the hinge at the next crank's
+//        tip a <connect>; gravity, no spring or motor, and the starting velocity the keyframe's
+//        qvel (each hinge's rate relative to its parent: -1 rad/s on the cranks, +1 on the
+//        couplers, which translate).
 // The step is swept as the single-body peer sweeps it (peers/mujoco_work_precision.cpp): a fixed
 // number of steps per output interval. A run is timed as that peer times it (common/bench.hpp):
 // the model's compilation and mj_makeData are not timed, mj_resetData is not; the steps and, at
@@ -41,6 +46,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstddef>
 #include <exception>
@@ -274,21 +280,32 @@ std::vector<MechanismRow> mujoco_a04_rows(const std::vector<double>& times, Poin
   return rows;
 }
 
-std::vector<MechanismRow> mujoco_a03_rows(
-    const PlanarLinkage& m, const std::vector<double>& times,
-    const std::function<double(const std::vector<double>& angles)>& measure, const Timing& timing) {
+std::vector<MechanismRow> mujoco_planar_rows(const std::string& id, const PlanarLinkage& m,
+                                             const std::vector<double>& times,
+                                             const PlanarMeasure& measure, const Timing& timing) {
   const std::size_t n = m.links.size();
+  std::string model_name = id;
+  std::transform(model_name.begin(), model_name.end(), model_name.begin(),
+                 [](unsigned char c) { return char(std::toupper(c)); });
+  const bool spring = m.stiffness != 0, motor = m.torque != 0;
+  const bool moving = std::any_of(m.links.begin(), m.links.end(),
+                                  [](const PlanarLinkage::Link& l) { return l.rate != 0; });
   // Each link's body frame sits at its hinge to its parent, parallel to the world's (qpos = 0 is
   // the starting configuration); its absolute angle is its starting angle plus the hinge angles
-  // on its path from the ground.
-  std::vector<double> angles(n, std::numeric_limits<double>::quiet_NaN());
+  // on its path from the ground, and its hinge's rate (qvel) is its absolute rate less its
+  // parent's.
   const auto mjcf = [&](Softness softness, double h) {
     std::ostringstream os;
     os.precision(17);
-    os << "<mujoco model=\"A03\"><option integrator=\"RK4\" gravity=\"0 0 0\"/><worldbody>"
-       << "<site name=\"ground_end\" pos=\""
-       << vec(m.spring_on_ground.x(), m.spring_on_ground.y(), 0) << "\"/>";
+    os << "<mujoco model=\"" << model_name << "\"><option integrator=\"RK4\" gravity=\""
+       << vec(m.gravity.x(), m.gravity.y(), 0) << "\"/><worldbody>";
+    if (spring) {
+      os << "<site name=\"ground_end\" pos=\""
+         << vec(m.spring_on_ground.x(), m.spring_on_ground.y(), 0) << "\"/>";
+    }
+    std::vector<int> order;  // the links in MuJoCo's order of bodies, hence of its hinges' dofs
     const std::function<void(int)> body = [&](int i) {
+      order.push_back(i);
       const PlanarLinkage::Link& link = m.links[std::size_t(i)];
       const Eigen::Vector2d at =
           link.hinge -
@@ -298,7 +315,7 @@ std::vector<MechanismRow> mujoco_a03_rows(
          << "\"><joint name=\"hinge" << i << "\" type=\"hinge\" axis=\"0 0 1\"/><inertial pos=\""
          << vec(c.x(), c.y(), 0) << "\" mass=\"" << link.mass << "\" diaginertia=\""
          << vec(link.inertia, link.inertia, link.inertia) << "\"/>";
-      if (i == m.spring_link) {
+      if (spring && i == m.spring_link) {
         const Eigen::Vector2d p = m.spring_on_link - link.hinge;
         os << "<site name=\"link_end\" pos=\"" << vec(p.x(), p.y(), 0) << "\"/>";
       }
@@ -321,18 +338,40 @@ std::vector<MechanismRow> mujoco_a03_rows(
          << (loop.b < 0 ? std::string("world") : "link" + std::to_string(loop.b)) << "\" anchor=\""
          << vec(p.x(), p.y(), 0) << "\"" << soft(softness, h) << "/>";
     }
-    os << "</equality><tendon><spatial stiffness=\"" << m.stiffness << "\" springlength=\""
-       << m.rest_length << "\"><site site=\"link_end\"/><site site=\"ground_end\"/></spatial>"
-       << "</tendon><actuator><motor name=\"motor\" joint=\"hinge" << m.motor_link
-       << "\" gear=\"1\"/></actuator><keyframe><key ctrl=\"" << m.torque
-       << "\"/></keyframe></mujoco>";
+    os << "</equality>";
+    if (spring) {
+      os << "<tendon><spatial stiffness=\"" << m.stiffness << "\" springlength=\"" << m.rest_length
+         << "\"><site site=\"link_end\"/><site site=\"ground_end\"/></spatial>"
+         << "</tendon>";
+    }
+    if (motor) {
+      os << "<actuator><motor name=\"motor\" joint=\"hinge" << m.motor_link
+         << "\" gear=\"1\"/></actuator>";
+    }
+    if (motor || moving) {  // the starting state: the motor's ctrl, the hinges' rates
+      os << "<keyframe><key";
+      if (motor) {
+        os << " ctrl=\"" << m.torque << "\"";
+      }
+      if (moving) {
+        os << " qvel=\"";
+        for (std::size_t j = 0; j < order.size(); ++j) {
+          const PlanarLinkage::Link& link = m.links[std::size_t(order[j])];
+          os << (j ? " " : "")
+             << link.rate - (link.parent < 0 ? 0.0 : m.links[std::size_t(link.parent)].rate);
+        }
+        os << "\"";
+      }
+      os << "/></keyframe>";
+    }
+    os << "</mujoco>";
     return os.str();
   };
+  // The links' absolute angles at every output (NaN: not reached), kept for `measure`.
+  const std::vector<double> unset(n, std::numeric_limits<double>::quiet_NaN());
+  std::vector<std::vector<double>> angles(times.size(), unset);
   auto record = [&, qpos = std::vector<int>()](std::size_t k, const mjModel& model,
                                                const mjData& d) mutable {
-    if (k + 1 < times.size()) {
-      return;  // the hinge angles count the turns: only the last output is measured
-    }
     if (qpos.empty()) {
       for (std::size_t i = 0; i < n; ++i) {
         const std::string name = "hinge" + std::to_string(i);
@@ -340,17 +379,19 @@ std::vector<MechanismRow> mujoco_a03_rows(
       }
     }
     for (std::size_t i = 0; i < n; ++i) {
-      angles[i] = m.links[i].angle;
+      double& a = angles[k][i];
+      a = m.links[i].angle;
       for (int j = int(i); j >= 0; j = m.links[std::size_t(j)].parent) {
-        angles[i] += d.qpos[qpos[std::size_t(j)]];
+        a += d.qpos[qpos[std::size_t(j)]];
       }
     }
   };
   auto measure_run = [&] {
-    const bool reached =
-        std::none_of(angles.begin(), angles.end(), [](double a) { return std::isnan(a); });
+    const bool reached = std::none_of(angles.begin(), angles.end(), [](const auto& at) {
+      return std::any_of(at.begin(), at.end(), [](double a) { return std::isnan(a); });
+    });
     const double e = reached ? measure(angles) : std::numeric_limits<double>::quiet_NaN();
-    std::fill(angles.begin(), angles.end(), std::numeric_limits<double>::quiet_NaN());
+    std::fill(angles.begin(), angles.end(), unset);
     return e;
   };
   std::vector<MechanismRow> rows;
@@ -436,10 +477,10 @@ std::vector<MechanismRow> mujoco_a04_rows(const std::vector<double>& /*times*/,
                                           PointTrackError& /*p3*/, const Timing& /*timing*/) {
   return {};
 }
-std::vector<MechanismRow> mujoco_a03_rows(
-    const PlanarLinkage& /*m*/, const std::vector<double>& /*times*/,
-    const std::function<double(const std::vector<double>& angles)>& /*measure*/,
-    const Timing& /*timing*/) {
+std::vector<MechanismRow> mujoco_planar_rows(const std::string& /*id*/, const PlanarLinkage& /*m*/,
+                                             const std::vector<double>& /*times*/,
+                                             const PlanarMeasure& /*measure*/,
+                                             const Timing& /*timing*/) {
   return {};
 }
 std::vector<MechanismRow> mujoco_a05_rows(const FlyballGovernor& /*g*/,

@@ -2,20 +2,20 @@
 // A01, the simple pendulum (a point mass on a massless 1 m bar, released horizontally: Jacobi's
 // sn), and A02, the N-four-bar (N + 1 cranks and N couplers, all 1 m and 1 kg, B0 at 1 m/s),
 // whose motion has one degree of freedom: the cranks stay parallel, and in the crank angle it is
-// the rotating pendulum I theta'' = G sin theta, integrated here as a second, minimal-coordinate
-// model. The N-four-bar passes its singular position (all links on one line, where the loop
-// momentarily gains N degrees of freedom) twice per turn. A03, Andrews' mechanism:
-// andrews.test.cpp; A04, Bricard's mechanism: bricard.test.cpp; the slider-crank (revolute and
-// prismatic joints) against its closed-form position: examples.test.cpp.
+// the rotating pendulum I theta'' = G sin theta, integrated as a second, minimal-coordinate
+// model (both models in joint/n_four_bar_reference.hpp, shared with the main job's study (e)). The
+// N-four-bar passes its singular position (all links on one line, where the loop momentarily gains
+// N degrees of freedom) twice per turn. A03, Andrews' mechanism: andrews.test.cpp; A04, Bricard's
+// mechanism: bricard.test.cpp; the slider-crank (revolute and prismatic joints) against its
+// closed-form position: examples.test.cpp.
 
-#include <array>
 #include <cmath>
 #include <numbers>
 #include <vector>
 
 #include <Eigen/Geometry>
-#include <boost/numeric/odeint.hpp>
 
+#include "joint/n_four_bar_reference.hpp"
 #include "support/catch.hpp"
 #include "support/pendulum.hpp"
 #include "tumble/integrate.hpp"
@@ -28,13 +28,10 @@ using namespace tumble;
 
 constexpr double g0 = 9.81;
 using Ball = RigidBody<EulerParameters>;
-using Bar = RigidBody<EulerParameters>;
-
-/// A bar of length l along body x, 1 cm square section (the IFToMM links are "rods").
-Bar bar(double m, double l, double s = 0.01) {
-  return Bar(MassProperties<>::about_centroid(
-      m, Vector3d(m * s * s / 6, m * (l * l + s * s) / 12, m * (l * l + s * s) / 12).asDiagonal()));
-}
+// A02's models, tumble's (NFourBar) and the minimal-coordinate one (crank_angle), are shared
+// with the main job's study (e): joint/n_four_bar_reference.hpp.
+using n_four_bar_test::crank_angle;
+using n_four_bar_test::NFourBar;
 
 }  // namespace
 
@@ -69,69 +66,10 @@ TEST_CASE("IFToMM A01: the simple pendulum against Jacobi's sn", "[joint][iftomm
   CHECK(de <= 1e-8);
 }
 
-namespace {
-
-/// A02: N + 1 cranks hinged to the ground at x = 0, 1, ..., N (axis z) and N couplers joining
-/// their tips; all links 1 m and 1 kg. The benchmark starts with the cranks up (+y) and B0, the
-/// first crank's tip, moving at 1 m/s along +x; `hanging` starts them down (-y) with B0 at 1 m/s
-/// along +x instead, a swing of 0.3 rad about the stable position that never nears the singular
-/// one.
-template <int N> struct NFourBar {
-  using SceneT = Mechanism<Bodies<Bar>, Joints<Revolute>, Loads<UniformGravity>>;
-  SceneT scene;
-  std::vector<BodyId<Bar>> cranks;
-  explicit NFourBar(bool hanging) {
-    const Vector3d z = Vector3d::UnitZ(), end(0.5, 0, 0);
-    const double side = hanging ? -1.0 : 1.0;
-    // Body x along the crank: +y (up) or -y (hanging); the tip moves at +1 m/s along x.
-    const Matrix3d r = Eigen::AngleAxisd(side * std::numbers::pi / 2, z).toRotationMatrix();
-    const Vector3d w(0, 0, -side);
-    for (int i = 0; i <= N; ++i) {
-      cranks.push_back(scene.add(bar(1.0, 1.0), {.position = Vector3d(i, 0.5 * side, 0),
-                                                 .rotation = r,
-                                                 .velocity = Vector3d(0.5, 0, 0),
-                                                 .omega = w}));
-      scene.add_joint(cranks.back(), ground, Revolute(-end, z, Vector3d(i, 0, 0), z));
-    }
-    for (int i = 0; i < N; ++i) {
-      const auto c = scene.add(
-          bar(1.0, 1.0), {.position = Vector3d(i + 0.5, side, 0), .velocity = Vector3d(1.0, 0, 0)});
-      scene.add_joint(c, cranks[i], Revolute(-end, z, end, z));
-      scene.add_joint(c, cranks[i + 1], Revolute(end, z, end, z));
-    }
-    for (int b = 0; b < scene.body_count(); ++b) {
-      scene.add_load(BodyId<Bar>{b, b}, UniformGravity(Vector3d(0, -g0, 0)));
-    }
-  }
-};
-
-/// The minimal-coordinate model of the N-four-bar: theta, the cranks' angle from +y towards +x;
-/// T = (I_eff / 2) thetadot^2 with I_eff = (N + 1) I_o + N m l^2 (cranks about their pivots,
-/// couplers translating with the tips), V = G cos theta with G = ((N + 1) / 2 + N) m g l, so
-/// I_eff theta'' = G sin theta. Integrated by Odeint's Fehlberg 7(8) at 1e-13.
-double crank_angle(int n, bool hanging, double t) {
-  const double io = (1.0 + 1e-4) / 12.0 + 0.25;  // the bar about its end: (l^2 + s^2)/12 + 1/4
-  const double ieff = (n + 1) * io + n * 1.0;
-  const double gg = ((n + 1) * 0.5 + n) * g0;
-  using State = std::array<double, 2>;
-  State x = hanging ? State{std::numbers::pi, -1.0} : State{0.0, 1.0};
-  namespace odeint = boost::numeric::odeint;
-  odeint::integrate_adaptive(
-      odeint::make_controlled(1e-13, 1e-13, odeint::runge_kutta_fehlberg78<State>()),
-      [&](const State& s, State& d, double) {
-        d[0] = s[1];
-        d[1] = gg / ieff * std::sin(s[0]);
-      },
-      x, 0.0, t, 1e-3);
-  return x[0];
-}
-
-}  // namespace
-
 /// Runs the N-four-bar to t_end with integrator I at tol and returns the largest crank-angle
 /// error against the minimal-coordinate model, with the energy and the closure checked.
 template <int N, class I> double n_four_bar_error(bool hanging, double t_end, double tol) {
-  NFourBar<N> m(hanging);
+  NFourBar m(N, hanging);
   SceneState s = m.scene.initial_state();
   const AssemblyReport rep = assemble(m.scene, s);
   CHECK(rep.before.position <= 1e-15);  // placed exactly
@@ -148,8 +86,7 @@ template <int N, class I> double n_four_bar_error(bool hanging, double t_end, do
   I integrator(m.scene, 0.0, s, opt);
   integrator.integrate(times, [&](double t, const SceneState& x) {
     // The first crank's angle from +y towards +x, from its body x axis (R x = (sin, cos)).
-    const Vector3d dir = rotation(m.scene, m.cranks[0], x) * Vector3d::UnitX();
-    const double theta = std::atan2(dir(0), dir(1));
+    const double theta = m.crank_angle(x);
     err = std::max(
         err, std::abs(std::remainder(theta - crank_angle(N, hanging, t), 2 * std::numbers::pi)));
     de = std::max(de, std::abs(energy(m.scene, x) - e0));
@@ -167,7 +104,7 @@ TEMPLATE_TEST_CASE_SIG("IFToMM A02: the N-four-bar swinging against the minimal-
                        "[joint][iftomm]", ((int N), N), 2, 10) {
   // Hanging, the loop (rank 12 N + 5 of 15 N + 5 rows: N + 1 redundant planar windows in 3D)
   // swings 0.3 rad about its stable position for the benchmark's 10 s.
-  using I = OdeintIntegrator<typename NFourBar<N>::SceneT>;
+  using I = OdeintIntegrator<NFourBar::SceneT>;
   CHECK(n_four_bar_error<N, I>(true, 10.0, 1e-10) <= 1e-8);
 }
 
@@ -186,7 +123,7 @@ TEMPLATE_TEST_CASE_SIG("IFToMM A02: the N-four-bar swinging against the minimal-
 // ("stopped": by the stiffness test, the steps held at the crossing). Asserted: N = 2 at 1e-10
 // within the bound this test had as a known defect, 1e-7.
 TEST_CASE("IFToMM A02: the N-four-bar through its singular positions", "[joint][iftomm]") {
-  using I = OdeintIntegrator<NFourBar<2>::SceneT>;
+  using I = OdeintIntegrator<NFourBar::SceneT>;
   CHECK(n_four_bar_error<2, I>(false, 10.0, 1e-10) <= 1e-7);
 }
 
@@ -196,6 +133,6 @@ TEST_CASE("IFToMM A02: the N-four-bar through its singular positions", "[joint][
 // with projections, or the crossing located and stepped over).
 TEST_CASE("IFToMM A02: the 10-four-bar through its singular positions at 1e-10",
           "[joint][iftomm][!shouldfail]") {
-  using I = OdeintIntegrator<NFourBar<10>::SceneT>;
+  using I = OdeintIntegrator<NFourBar::SceneT>;
   CHECK(n_four_bar_error<10, I>(false, 10.0, 1e-10) <= 1e-7);
 }
