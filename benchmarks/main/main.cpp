@@ -205,7 +205,8 @@ int run(const Options& o) {
     const int runs =
         static_cast<int>(mechanism_runs.methods.size() * mechanism_runs.tolerances.size());
     progress.begin("mechanisms, " + m.id, runs);
-    const MechanismResult result = m.run(mechanism_runs, [&] { progress.step(); });
+    MechanismResult result = m.run(mechanism_runs, [&] { progress.step(); });
+    keep_wanted(mechanism_runs, result.rows);  // the peers' rows, by their labels
     int failed = 0;
     for (const MechanismRow& r : result.rows) {
       failed += r.run.ok ? 0 : 1;

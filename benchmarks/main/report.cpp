@@ -9,9 +9,8 @@
 //               the log-log slope;
 //   (d)         runs per second of an ensemble against threads and MPI processes, the per-run cost
 //               against serial loops, memory and allocations per run, against their targets;
-//   (e)         per mechanism (IFToMM A01, A03, A04, A05) and method (tumble's integrators,
-//   MuJoCo's
-//               RK4 when installed), the time to reach an error of 1e-3, 1e-6, 1e-9 in the
+//   (e)         per mechanism (IFToMM A01-A05) and method (tumble's integrators, MuJoCo's and
+//               Exudyn's when installed), the time to reach an error of 1e-3, 1e-6, 1e-9 in the
 //               problem's own measure (time_at, as in (b)), the best error and the constraint
 //               residual |C| at the end of the most accurate run.
 
@@ -193,7 +192,7 @@ std::string header_text(const Options& o, const std::filesystem::path& out, int 
     peers.push_back(pinocchio_description());
   }
   if (mujoco_available()) {
-    peers.push_back("MuJoCo (mj_step, RK4)");
+    peers.push_back("MuJoCo (mj_step: RK4; implicitfast on A05)");
   }
   if (exudyn_available()) {
     peers.push_back("Exudyn (SolveDynamic, implicit; mechanisms only)");

@@ -119,13 +119,17 @@ MechanismResult run_mechanism_a03(const MechanismPlan& plan, const std::function
     return andrews::mixed_error(andrews::relative(last), q_ref);
   };
   const PlanarLinkage linkage = peer_linkage(m);
-  const std::vector<MechanismRow> peer =
-      mujoco_planar_rows("a03", linkage, times, peer_measure, plan.timing);
-  r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  if (runs_peer(plan, "MuJoCo")) {
+    const std::vector<MechanismRow> peer =
+        mujoco_planar_rows("a03", linkage, times, peer_measure, plan.timing);
+    r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  }
   // Exudyn, when installed: the same linkage, outputs and measure.
-  const std::vector<MechanismRow> exudyn =
-      exudyn_planar_rows("a03", linkage, times, peer_measure, plan.timing);
-  r.rows.insert(r.rows.end(), exudyn.begin(), exudyn.end());
+  if (runs_peer(plan, "Exudyn")) {
+    const std::vector<MechanismRow> exudyn =
+        exudyn_planar_rows("a03", linkage, times, peer_measure, plan.timing);
+    r.rows.insert(r.rows.end(), exudyn.begin(), exudyn.end());
+  }
   return r;
 }
 

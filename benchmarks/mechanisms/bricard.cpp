@@ -118,12 +118,16 @@ MechanismResult run_mechanism_a04(const MechanismPlan& plan, const std::function
                 " m from it: errors near that are not resolved";
   r.rows = mechanism_sweep(plan, six.scene, times, record, measure, step);
   // MuJoCo, when installed: the same output times, measured by the same `p3`.
-  const std::vector<MechanismRow> peer = mujoco_a04_rows(times, p3, plan.timing);
-  r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  if (runs_peer(plan, "MuJoCo")) {
+    const std::vector<MechanismRow> peer = mujoco_a04_rows(times, p3, plan.timing);
+    r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  }
   // Exudyn, when installed: the same six hinges (redundant), outputs and `p3`.
-  const std::vector<MechanismRow> exudyn =
-      exudyn_a04_rows(peer_linkage(six), times, p3, plan.timing);
-  r.rows.insert(r.rows.end(), exudyn.begin(), exudyn.end());
+  if (runs_peer(plan, "Exudyn")) {
+    const std::vector<MechanismRow> exudyn =
+        exudyn_a04_rows(peer_linkage(six), times, p3, plan.timing);
+    r.rows.insert(r.rows.end(), exudyn.begin(), exudyn.end());
+  }
   return r;
 }
 

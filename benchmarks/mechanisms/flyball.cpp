@@ -82,8 +82,10 @@ MechanismResult run_mechanism_a05(const MechanismPlan& plan, const std::function
       .s0 = kS0,
       .alpha = kAlpha,
       .spin = kSpin};
-  const std::vector<MechanismRow> peer = mujoco_a05_rows(data, times, slider, plan.timing);
-  r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  if (runs_peer(plan, "MuJoCo")) {
+    const std::vector<MechanismRow> peer = mujoco_a05_rows(data, times, slider, plan.timing);
+    r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  }
   return r;
 }
 

@@ -111,12 +111,16 @@ MechanismResult run_mechanism_a02(const MechanismPlan& plan, const std::function
     return n_four_bar_test::crank_angle_error(first, theta_ref);
   };
   const PlanarLinkage linkage = peer_linkage(m);
-  const std::vector<MechanismRow> peer =
-      mujoco_planar_rows("a02", linkage, times, peer_measure, plan.timing);
-  r.rows.insert(r.rows.end(), peer.begin(), peer.end());
-  const std::vector<MechanismRow> exudyn =
-      exudyn_planar_rows("a02", linkage, times, peer_measure, plan.timing);
-  r.rows.insert(r.rows.end(), exudyn.begin(), exudyn.end());
+  if (runs_peer(plan, "MuJoCo")) {
+    const std::vector<MechanismRow> peer =
+        mujoco_planar_rows("a02", linkage, times, peer_measure, plan.timing);
+    r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  }
+  if (runs_peer(plan, "Exudyn")) {
+    const std::vector<MechanismRow> exudyn =
+        exudyn_planar_rows("a02", linkage, times, peer_measure, plan.timing);
+    r.rows.insert(r.rows.end(), exudyn.begin(), exudyn.end());
+  }
   return r;
 }
 

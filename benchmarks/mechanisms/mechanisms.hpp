@@ -55,6 +55,7 @@ struct MechanismPlan {
   std::vector<double> tolerances;
   std::vector<MechanismMethod> methods;
   Timing timing;
+  std::vector<std::string> filter;  ///< --methods: empty, all; else labels containing one
 };
 
 /// One run of a method at one tolerance.
@@ -74,6 +75,13 @@ struct MechanismResult {
   std::string reference;  ///< how the reference was obtained
   std::vector<MechanismRow> rows;
 };
+
+/// Whether the plan runs the peer named `peer` ("MuJoCo", "Exudyn"): --methods empty, or one of
+/// its strings within the peer's name or holding it ("--methods MuJoCo", "--methods 'MuJoCo RK4
+/// (stiffest)'"). Its rows are then filtered by label as tumble's are (keep_wanted).
+bool runs_peer(const MechanismPlan& plan, const std::string& peer);
+/// Drops the rows whose method label contains none of the plan's --methods strings.
+void keep_wanted(const MechanismPlan& plan, std::vector<MechanismRow>& rows);
 
 /// A problem of study (e): its id and how to run it (one call per row: `step`).
 struct MechanismProblem {

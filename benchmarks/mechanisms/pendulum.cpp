@@ -65,11 +65,15 @@ MechanismResult run_mechanism_a01(const MechanismPlan& plan, const std::function
   r.reference = "closed form, theta(t) = 2 asin(k sn(K - w0 t | k^2))";
   r.rows = mechanism_sweep(plan, scene, times, record, measure, step);
   // MuJoCo, when installed: the same output times, measured by the same `bob`.
-  const std::vector<MechanismRow> peer = mujoco_a01_rows(times, bob, plan.timing);
-  r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  if (runs_peer(plan, "MuJoCo")) {
+    const std::vector<MechanismRow> peer = mujoco_a01_rows(times, bob, plan.timing);
+    r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  }
   // Exudyn, when installed: its model from `data`, the same output times, the same `bob`.
-  const std::vector<MechanismRow> exudyn = exudyn_a01_rows(data, times, bob, plan.timing);
-  r.rows.insert(r.rows.end(), exudyn.begin(), exudyn.end());
+  if (runs_peer(plan, "Exudyn")) {
+    const std::vector<MechanismRow> exudyn = exudyn_a01_rows(data, times, bob, plan.timing);
+    r.rows.insert(r.rows.end(), exudyn.begin(), exudyn.end());
+  }
   return r;
 }
 

@@ -3,6 +3,8 @@
 // when tumble::odeint exists (TUMBLE_BENCH_HAVE_TUMBLE_ODEINT: the front door and
 // OdeintIntegrator need it).
 
+#include <algorithm>
+#include <string>
 #include <vector>
 
 #include "mechanisms/mechanisms.hpp"
@@ -41,6 +43,24 @@ std::vector<MechanismProblem> mechanism_problems() {
 #if !TUMBLE_BENCH_HAVE_TUMBLE_ODEINT
 bool exudyn_available() { return false; }  // peers/exudyn_mechanisms.cpp is not built
 #endif
+
+bool runs_peer(const MechanismPlan& plan, const std::string& peer) {
+  return plan.filter.empty() ||
+         std::any_of(plan.filter.begin(), plan.filter.end(), [&](const std::string& f) {
+           return peer.find(f) != std::string::npos || f.find(peer) != std::string::npos;
+         });
+}
+
+void keep_wanted(const MechanismPlan& plan, std::vector<MechanismRow>& rows) {
+  if (plan.filter.empty()) {
+    return;
+  }
+  std::erase_if(rows, [&](const MechanismRow& r) {
+    return std::none_of(plan.filter.begin(), plan.filter.end(), [&](const std::string& f) {
+      return r.method.find(f) != std::string::npos;
+    });
+  });
+}
 
 std::vector<double> mechanism_tolerances(bool full) {
   if (full) {

@@ -128,6 +128,7 @@ void make_stiff_reference(Problem& p) {
 MechanismPlan mechanism_plan(const Options& o) {
   MechanismPlan plan;
   plan.tolerances = o.tolerances.empty() ? mechanism_tolerances(o.full) : o.tolerances;
+  plan.filter = o.methods;
   for (const MechanismMethod m :
        {MechanismMethod::front_door, MechanismMethod::odeint_f78, MechanismMethod::cvode_bdf}) {
     const std::string label = mechanism_method_label(m);
