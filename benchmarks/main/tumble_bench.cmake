@@ -81,6 +81,8 @@ if(TARGET tumble::odeint)
     mechanisms/andrews.cpp        # mechanism: IFToMM A03, Andrews' squeezing mechanism
     mechanisms/bricard.cpp        # mechanism: IFToMM A04, Bricard's mechanism
     mechanisms/flyball.cpp        # mechanism: IFToMM A05, the stiff flyball governor
+    mechanisms/chain.cpp          # mechanism: an open spatial chain of six hinged rods
+    peers/pinocchio_mechanisms.cpp  # mechanisms: Pinocchio's aba in Odeint on the chain
     peers/mujoco_mechanisms.cpp   # mechanisms: MuJoCo's RK4 on them (when installed)
     peers/exudyn_mechanisms.cpp)  # mechanisms: Exudyn's solvers on them (when installed)
   target_link_libraries(tumble_bench PRIVATE tumble::odeint)
@@ -162,8 +164,8 @@ if(TUMBLE_BENCH_HAVE_EXUDYN)
 endif()
 if(TUMBLE_BENCH_HAVE_PINOCCHIO AND TARGET tumble_bench_pinocchio)
   # Only the Pinocchio translation unit sees its headers (they take a while to compile).
-  set_source_files_properties(peers/pinocchio_work_precision.cpp PROPERTIES
-    COMPILE_DEFINITIONS TUMBLE_BENCH_HAVE_PINOCCHIO=1)
+  set_source_files_properties(peers/pinocchio_work_precision.cpp peers/pinocchio_mechanisms.cpp
+    PROPERTIES COMPILE_DEFINITIONS TUMBLE_BENCH_HAVE_PINOCCHIO=1)
   target_link_libraries(tumble_bench PRIVATE tumble_bench_pinocchio)
   message(STATUS "tumble_bench: Pinocchio's aba in CVODE is one of the references")
 else()

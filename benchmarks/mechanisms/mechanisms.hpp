@@ -10,6 +10,9 @@
 //        non-redundant twin (examples/bricard.cpp), stated as such
 //   a05  the stiff flyball governor (A05): a second model in four minimal coordinates
 //        (tests/joint/flyball_reference.hpp); MuJoCo runs it, Exudyn not yet
+//   chain an open spatial chain of six rods on hinges about axes not all parallel, from the
+//        ground, swinging under gravity: a second model in the six joint angles (recursive
+//        Newton-Euler), integrated in long double (tests/joint/chain_reference.hpp)
 // Each problem's scene type is instantiated in a translation unit of its own
 // (mechanisms/<problem>.cpp; the compiler's memory stays within CI's budget per process), which
 // runs tumble's integrators over a tolerance ladder with the same output times:
@@ -28,6 +31,9 @@
 // its rows join MechanismResult::rows with the peer's name as the method. Exudyn's implicit
 // solvers (peers/exudyn_mechanisms.cpp and .py, when `import exudyn` works in the Python found at
 // configure time) run each problem in the same way, in absolute coordinates, from the same data.
+// On the open chain, Pinocchio's articulated-body algorithm (peers/pinocchio_mechanisms.cpp, when
+// Pinocchio's headers are found) runs in Boost.Odeint's Fehlberg 7(8) over the plan's tolerances,
+// as a Pinocchio user integrates it.
 
 #include <functional>
 #include <limits>
@@ -99,9 +105,10 @@ MechanismResult run_mechanism_a02(const MechanismPlan& plan, const std::function
 MechanismResult run_mechanism_a03(const MechanismPlan& plan, const std::function<void()>& step);
 MechanismResult run_mechanism_a04(const MechanismPlan& plan, const std::function<void()>& step);
 MechanismResult run_mechanism_a05(const MechanismPlan& plan, const std::function<void()>& step);
+MechanismResult run_mechanism_chain(const MechanismPlan& plan, const std::function<void()>& step);
 
-// ---- peers (peers/mujoco_mechanisms.cpp, peers/exudyn_mechanisms.cpp): no rows when the peer
-// is not installed ------------------------------------------------------------------------------
+// ---- peers (peers/mujoco_mechanisms.cpp, peers/exudyn_mechanisms.cpp, and on the chain
+// peers/pinocchio_mechanisms.cpp): no rows when the peer is not installed -----------------------
 
 class PointTrackError;  // mechanisms/track.hpp
 
@@ -153,18 +160,23 @@ struct BarPendulum {
   Eigen::Vector3d pivot, start, gravity;  ///< the bar's length is |start - pivot| (m, m/s^2)
 };
 
-/// A spatial linkage of rigid bodies and hinges as the peers build it (A04, filled by
-/// mechanisms/bricard.cpp from the example's scene), at rest at the start, under uniform gravity.
+/// A spatial linkage of rigid bodies and hinges as the peers build it, under uniform gravity:
+/// A04 (filled by mechanisms/bricard.cpp from the example's scene), at rest at the start, and the
+/// open chain (mechanisms/chain.cpp, from the second model's start), moving. In an open chain,
+/// hinge i holds body a = i to its parent b < i (or the ground), so the hinges are the tree.
 struct SpatialLinkage {
   struct Body {
-    Eigen::Vector3d centroid;  ///< (m), where the body frame sits
-    Eigen::Matrix3d rotation;  ///< body frame -> world at the start
-    double mass = 0;           ///< kg
-    Eigen::Matrix3d inertia;   ///< about the centroid, body axes (kg m^2)
+    Eigen::Vector3d centroid;                            ///< (m), where the body frame sits
+    Eigen::Matrix3d rotation;                            ///< body frame -> world at the start
+    double mass = 0;                                     ///< kg
+    Eigen::Matrix3d inertia;                             ///< about the centroid, body axes (kg m^2)
+    Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  ///< the centroid's at the start (m/s)
+    Eigen::Vector3d omega = Eigen::Vector3d::Zero();     ///< world axes, at the start (rad/s)
   };
   struct Hinge {  ///< between bodies a and b (b = -1: the ground)
     int a = 0, b = -1;
     Eigen::Vector3d at, axis;  ///< in the world at the start (m; a unit vector)
+    double rate = 0;           ///< (omega_a - omega_b) . axis at the start (rad/s)
   };
   std::vector<Body> bodies;
   std::vector<Hinge> hinges;
@@ -212,6 +224,22 @@ std::vector<MechanismRow> mujoco_a05_rows(const FlyballGovernor& g,
                                           const std::vector<double>& times, PointTrackError& slider,
                                           const Timing& timing);
 
+/// The open chain (hinge i from body i to its parent, no loop, rates at the start as `l` gives
+/// them; std::invalid_argument otherwise): the tracked point at `times`, measured by `tip`.
+std::vector<MechanismRow> mujoco_chain_rows(const SpatialLinkage& l,
+                                            const std::vector<double>& times, PointTrackError& tip,
+                                            const Timing& timing);
+
+/// Pinocchio's aba on the open chain `l` (as MuJoCo's rows take it), q' = v, v' = aba(q, v, 0)
+/// integrated by Boost.Odeint's controlled Fehlberg 7(8) at rtol = atol = each of `tolerances`
+/// (integrate_times over `times`), timed as tumble's rows (peers/pinocchio_mechanisms.cpp): the
+/// tracked point at `times`, measured by `tip`. No rows without Pinocchio; a linkage that is not
+/// such a chain gives one failed row.
+std::vector<MechanismRow> pinocchio_chain_rows(const SpatialLinkage& l,
+                                               const std::vector<double>& times,
+                                               const std::vector<double>& tolerances,
+                                               PointTrackError& tip, const Timing& timing);
+
 /// Whether Exudyn's rows run (the Python found at configure time imports exudyn).
 bool exudyn_available();
 /// Exudyn's implicit solvers (generalized-alpha, index 3, and the trapezoidal rule, index 2) over
@@ -224,6 +252,11 @@ std::vector<MechanismRow> exudyn_a01_rows(const BarPendulum& p, const std::vecto
 /// A04: the linkage `l`, its tracked point at `times` measured by `p3`;
 std::vector<MechanismRow> exudyn_a04_rows(const SpatialLinkage& l, const std::vector<double>& times,
                                           PointTrackError& p3, const Timing& timing);
+/// the open chain: the linkage `l` (moving at the start, not redundant), its tracked point at
+/// `times` measured by `tip`;
+std::vector<MechanismRow> exudyn_chain_rows(const SpatialLinkage& l,
+                                            const std::vector<double>& times, PointTrackError& tip,
+                                            const Timing& timing);
 /// A02, A03: the linkage `m` of problem `id` over `times`, the links' absolute angles at every
 /// output measured by `measure`.
 std::vector<MechanismRow> exudyn_planar_rows(const std::string& id, const PlanarLinkage& m,

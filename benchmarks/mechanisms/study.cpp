@@ -28,13 +28,15 @@ std::vector<MechanismProblem> mechanism_problems() {
   // the peer's name as `method`, the same output times and the same error measure (the problem's
   // .cpp hands them over); the table and the CSV take them as they are. MuJoCo's RK4 does so
   // (peers/mujoco_mechanisms.cpp), and Exudyn's implicit solvers (peers/exudyn_mechanisms.cpp,
-  // a Python process on peers/exudyn_mechanisms.py), each when installed.
+  // a Python process on peers/exudyn_mechanisms.py), each when installed; on the open chain,
+  // Pinocchio's aba in Boost.Odeint too (peers/pinocchio_mechanisms.cpp).
 #if TUMBLE_BENCH_HAVE_TUMBLE_ODEINT
   return {{"a01", &run_mechanism_a01},
           {"a02", &run_mechanism_a02},
           {"a03", &run_mechanism_a03},
           {"a04", &run_mechanism_a04},
-          {"a05", &run_mechanism_a05}};
+          {"a05", &run_mechanism_a05},
+          {"chain", &run_mechanism_chain}};  // after the IFToMM problems: not one of them
 #else
   return {};  // the problems' runs need tumble::odeint (Boost >= 1.74): not built
 #endif

@@ -6,14 +6,15 @@
 //
 // Exudyn is a Python package over a C++ core with no C or C++ interface of its own, so each
 // problem runs in a Python process of its own: this file writes the problem's data (from tumble's
-// own problem: mechanisms.hpp's BarPendulum, PlanarLinkage, SpatialLinkage), the output times,
-// the ladder of steps and tumble's Timing to a JSON file, runs peers/exudyn_mechanisms.py on it,
-// and reads back, for each run, its times, counters and what the problem measures. The script
-// builds the model in Exudyn (its top comment describes the models and settings), times only
-// exu.SolveDynamic and writes the tracked point (A01, A04) or the links' absolute angles (A02,
-// A03) at each output; the error is computed here, by the very object that measures
-// tumble's rows. A failure of the script (a Python error, a missing module) is reported on stderr
-// and gives no rows; a run that Exudyn fails (Newton diverging at a coarse step) is a failed row.
+// own problem: mechanisms.hpp's BarPendulum, PlanarLinkage, SpatialLinkage for A04 and the open
+// chain), the output times, the ladder of steps and tumble's Timing to a JSON file, runs
+// peers/exudyn_mechanisms.py on it, and reads back, for each run, its times, counters and what the
+// problem measures. The script builds the model in Exudyn (its top comment describes the models
+// and settings), times only exu.SolveDynamic and writes the tracked point at each output (A01,
+// A04, the chain) or the links' absolute angles at each output (A02, A03); the error is computed
+// here, by the very object that measures tumble's rows. A failure of the script (a Python error, a
+// missing module) is reported on stderr and gives no rows; a run that Exudyn fails (Newton
+// diverging at a coarse step) is a failed row.
 //
 // The rows: method "Exudyn GeneralizedAlpha" (index-3 generalized-alpha, spectral radius 0.9)
 // and "Exudyn TrapezoidalIndex2" (the trapezoidal rule with the constraints differentiated once),
@@ -210,6 +211,30 @@ std::vector<MechanismRow> point_rows(const std::string& id, const std::string& i
   return rows;
 }
 
+/// The "spatial" member of the JSON input: the linkage `l` as the script's spatial() reads it.
+std::string spatial_json(const SpatialLinkage& l, bool redundant) {
+  std::ostringstream os;
+  os.precision(17);
+  os << "\"spatial\": {\"bodies\": [";
+  for (std::size_t i = 0; i < l.bodies.size(); ++i) {
+    const SpatialLinkage::Body& b = l.bodies[i];
+    os << (i ? ", " : "") << "{\"centroid\": " << json(b.centroid)
+       << ", \"rotation\": " << json_matrix(b.rotation) << ", \"mass\": " << b.mass
+       << ", \"inertia\": " << json_matrix(b.inertia) << ", \"velocity\": " << json(b.velocity)
+       << ", \"omega\": " << json(b.omega) << "}";
+  }
+  os << "], \"hinges\": [";
+  for (std::size_t i = 0; i < l.hinges.size(); ++i) {
+    const SpatialLinkage::Hinge& h = l.hinges[i];
+    os << (i ? ", " : "") << "{\"a\": " << h.a << ", \"b\": " << h.b << ", \"at\": " << json(h.at)
+       << ", \"axis\": " << json(h.axis) << "}";
+  }
+  os << "], \"gravity\": " << json(l.gravity) << ", \"track\": {\"body\": " << l.track_body
+     << ", \"point\": " << json(l.track_point)
+     << "}, \"redundant\": " << (redundant ? "true" : "false") << "}";
+  return os.str();
+}
+
 /// Steps per output interval, doubling from `from` to `to`.
 std::vector<int> doubling(int from, int to) {
   std::vector<int> ladder;
@@ -236,24 +261,18 @@ std::vector<MechanismRow> exudyn_a01_rows(const BarPendulum& p, const std::vecto
 
 std::vector<MechanismRow> exudyn_a04_rows(const SpatialLinkage& l, const std::vector<double>& times,
                                           PointTrackError& p3, const Timing& timing) {
-  std::ostringstream os;
-  os.precision(17);
-  os << common_json("a04", times, doubling(1, 1024), timing) << ", \"spatial\": {\"bodies\": [";
-  for (std::size_t i = 0; i < l.bodies.size(); ++i) {
-    const SpatialLinkage::Body& b = l.bodies[i];
-    os << (i ? ", " : "") << "{\"centroid\": " << json(b.centroid)
-       << ", \"rotation\": " << json_matrix(b.rotation) << ", \"mass\": " << b.mass
-       << ", \"inertia\": " << json_matrix(b.inertia) << "}";
-  }
-  os << "], \"hinges\": [";
-  for (std::size_t i = 0; i < l.hinges.size(); ++i) {
-    const SpatialLinkage::Hinge& h = l.hinges[i];
-    os << (i ? ", " : "") << "{\"a\": " << h.a << ", \"b\": " << h.b << ", \"at\": " << json(h.at)
-       << ", \"axis\": " << json(h.axis) << "}";
-  }
-  os << "], \"gravity\": " << json(l.gravity) << ", \"track\": {\"body\": " << l.track_body
-     << ", \"point\": " << json(l.track_point) << "}}";
-  return point_rows("a04", os.str(), p3, timing);
+  return point_rows(
+      "a04", common_json("a04", times, doubling(1, 1024), timing) + ", " + spatial_json(l, true),
+      p3, timing);
+}
+
+std::vector<MechanismRow> exudyn_chain_rows(const SpatialLinkage& l,
+                                            const std::vector<double>& times, PointTrackError& tip,
+                                            const Timing& timing) {
+  return point_rows(
+      "chain",
+      common_json("chain", times, doubling(1, 1024), timing) + ", " + spatial_json(l, false), tip,
+      timing);
 }
 
 std::vector<MechanismRow> exudyn_planar_rows(const std::string& id, const PlanarLinkage& m,
@@ -339,6 +358,11 @@ std::vector<MechanismRow> exudyn_planar_rows(const std::string& /*id*/, const Pl
                                              const std::vector<double>& /*times*/,
                                              const PlanarMeasure& /*measure*/,
                                              const Timing& /*timing*/) {
+  return {};
+}
+std::vector<MechanismRow> exudyn_chain_rows(const SpatialLinkage& /*l*/,
+                                            const std::vector<double>& /*times*/,
+                                            PointTrackError& /*tip*/, const Timing& /*timing*/) {
   return {};
 }
 

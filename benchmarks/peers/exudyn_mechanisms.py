@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""tumble_bench, study (e): Exudyn on the IFToMM mechanisms A01, A02, A03 and A04.
+"""tumble_bench, study (e): Exudyn on the IFToMM mechanisms A01-A04 and the open chain.
 
 Run by peers/exudyn_mechanisms.cpp through the Python found at configure time:
 
     python exudyn_mechanisms.py INPUT.json OUTPUT.txt
 
 INPUT (written by the C++ side from the data of tumble's own problem):
-    problem   "a01", "a02", "a03" or "a04"
+    problem   "a01", "a02", "a03", "a04" or "chain"
     times     the output times (s), increasing, from the first output to the end
     ladder    steps per output interval, one run per entry (the step h = first time / entry)
     solvers   Exudyn's DynamicSolverType names to run, e.g. ["GeneralizedAlpha"]
@@ -17,13 +17,16 @@ INPUT (written by the C++ side from the data of tumble's own problem):
               gravity (m, m/s^2); the bob hangs on a massless bar of |start - pivot|
     linkage   A02, A03: mechanisms.hpp's PlanarLinkage (links with their starting rates, loops,
               gravity, spring and motor: none when the stiffness or the torque is 0)
-    spatial   A04: bodies (centroid, rotation body -> world, mass, inertia about the centroid in
-              body axes), hinges (bodies a, b, -1 the ground; a point and an axis in the world),
-              gravity, the tracked point (body, point in body axes)
+    spatial   A04 and the chain: bodies (centroid, rotation body -> world, mass, inertia about
+              the centroid in body axes, the centroid's velocity and the angular velocity in the
+              world at the start), hinges (bodies a, b, -1 the ground; a point and an axis in the
+              world), gravity, the tracked point (body, point in body axes), redundant (whether
+              the hinges' rows are of deficient rank: A04's are, the chain's are not)
 
 OUTPUT, tab-separated lines (a file, since Exudyn prints on stdout):
     run  solver  substeps  h  ok  steps  newton_iterations  jacobians  |C|  walls  cpus  message
-    point  k  x  y  z         A01/A04: the tracked point at output k (after each successful run)
+    point  k  x  y  z         A01, A04, chain: the tracked point at output k (after each
+                              successful run)
     angles  k  a0  a1 ...     A02/A03: the links' absolute angles at output k (rad, over the turns)
     end                       written last: the file is complete
 
@@ -52,7 +55,8 @@ from exudyn.itemInterface import (  # noqa: E402
     NodeRigidBody2D, NodeRigidBodyEP, ObjectConnectorDistance, ObjectConnectorSpringDamper,
     ObjectGround, ObjectJointRevolute2D, ObjectJointRevoluteZ, ObjectRigidBody,
     ObjectRigidBody2D, SensorBody, SensorNode)
-from exudyn.rigidBodyUtilities import RotationMatrix2EulerParameters  # noqa: E402
+from exudyn.rigidBodyUtilities import (  # noqa: E402
+    AngularVelocity2EulerParameters_t, RotationMatrix2EulerParameters)
 
 
 def frame_with_z(axis):
@@ -114,14 +118,19 @@ def pendulum(data):
 
 
 def spatial(data):
-    """A04: rigid bodies with Euler parameters at their centroids, a JointRevoluteZ per hinge."""
+    """A04 and the chain: rigid bodies with Euler parameters at their centroids, moving at the
+    start as given (the parameters' rates from the world angular velocity), a JointRevoluteZ per
+    hinge."""
     m = Model()
     mbs = m.mbs
     bodies, frames = [], []
     for b in data["bodies"]:
         rot = np.asarray(b["rotation"], float)
+        ep = RotationMatrix2EulerParameters(rot)
+        rates = AngularVelocity2EulerParameters_t(np.asarray(b.get("omega", [0.0] * 3), float), ep)
         node = mbs.AddNode(NodeRigidBodyEP(
-            referenceCoordinates=list(b["centroid"]) + list(RotationMatrix2EulerParameters(rot))))
+            referenceCoordinates=list(b["centroid"]) + list(ep),
+            initialVelocities=list(b.get("velocity", [0.0] * 3)) + list(rates)))
         j = np.asarray(b["inertia"], float)  # Exudyn's order: xx, yy, zz, yz, xz, xy
         body = mbs.AddObject(ObjectRigidBody(
             mass=b["mass"], inertia=[j[0, 0], j[1, 1], j[2, 2], j[1, 2], j[0, 2], j[0, 1]],
@@ -338,7 +347,8 @@ def main():
     builders = {"a01": lambda: pendulum(data["pendulum"]),
                 "a02": lambda: planar(data["linkage"]),
                 "a03": lambda: planar(data["linkage"]),
-                "a04": lambda: spatial(data["spatial"])}
+                "a04": lambda: spatial(data["spatial"]),
+                "chain": lambda: spatial(data["spatial"])}
     build = builders[data["problem"]]
     with open(sys.argv[2], "w") as out:
         for solver in data["solvers"]:

@@ -28,6 +28,10 @@
 //        tip a <connect>; gravity, no spring or motor, and the starting velocity the keyframe's
 //        qvel (each hinge's rate relative to its parent: -1 rad/s on the cranks, +1 on the
 //        couplers, which translate).
+//   chain the open spatial chain (mechanisms/chain.cpp, SpatialLinkage): a tree of hinges, no
+//        equality constraint; each body framed at its centroid parallel to the world's (qpos = 0
+//        is the start), its inertia turned into world axes (fullinertia), the hinges' rates at
+//        the start a keyframe's qvel.
 // The step is swept as the single-body peer sweeps it (peers/mujoco_work_precision.cpp): a fixed
 // number of steps per output interval. A run is timed as that peer times it (common/bench.hpp):
 // the model's compilation and mj_makeData are not timed, mj_resetData is not; the steps and, at
@@ -463,6 +467,61 @@ std::vector<MechanismRow> mujoco_a05_rows(const FlyballGovernor& g,
   return rows;
 }
 
+std::vector<MechanismRow> mujoco_chain_rows(const SpatialLinkage& l,
+                                            const std::vector<double>& times, PointTrackError& tip,
+                                            const Timing& timing) {
+  const Eigen::Vector3d& g = l.gravity;
+  std::ostringstream os;
+  os.precision(17);
+  os << "<mujoco model=\"chain\"><option integrator=\"RK4\" gravity=\"" << vec(g.x(), g.y(), g.z())
+     << "\"/><worldbody>";
+  // Body i, then the bodies hinged to it, inside it (MJCF nests a tree); its position relative
+  // to its parent's centroid (the world's origin for the ground), both frames world-parallel.
+  const std::function<void(int)> body = [&](int i) {
+    const auto ui = static_cast<std::size_t>(i);
+    const SpatialLinkage::Body& b = l.bodies[ui];
+    const SpatialLinkage::Hinge& h = l.hinges[ui];
+    const Eigen::Vector3d from =
+        h.b < 0 ? Eigen::Vector3d::Zero() : l.bodies[static_cast<std::size_t>(h.b)].centroid;
+    const Eigen::Vector3d pos = b.centroid - from, at = h.at - b.centroid;
+    const Eigen::Matrix3d j = b.rotation * b.inertia * b.rotation.transpose();
+    os << "<body name=\"body" << i << "\" pos=\"" << vec(pos.x(), pos.y(), pos.z())
+       << "\"><joint type=\"hinge\" pos=\"" << vec(at.x(), at.y(), at.z()) << "\" axis=\""
+       << vec(h.axis.x(), h.axis.y(), h.axis.z()) << "\"/><inertial pos=\"0 0 0\" mass=\"" << b.mass
+       << "\" fullinertia=\"" << vec(j(0, 0), j(1, 1), j(2, 2)) << ' '
+       << vec(j(0, 1), j(0, 2), j(1, 2)) << "\"/>";
+    if (i == l.track_body) {
+      const Eigen::Vector3d p = b.rotation * l.track_point;
+      os << "<site name=\"track\" pos=\"" << vec(p.x(), p.y(), p.z()) << "\"/>";
+    }
+    for (std::size_t k = 0; k < l.hinges.size(); ++k) {
+      if (l.hinges[k].b == i) {
+        body(int(k));
+      }
+    }
+    os << "</body>";
+  };
+  for (std::size_t k = 0; k < l.hinges.size(); ++k) {
+    if (l.hinges[k].a != int(k) || l.hinges[k].b >= int(k)) {
+      throw std::invalid_argument("MuJoCo's chain: hinge i must hold body i to a parent < i");
+    }
+    if (l.hinges[k].b < 0) {
+      body(int(k));
+    }
+  }
+  os << "</worldbody><keyframe><key qvel=\"";
+  for (std::size_t k = 0; k < l.hinges.size(); ++k) {
+    os << (k ? " " : "") << l.hinges[k].rate;
+  }
+  os << "\"/></keyframe></mujoco>";
+  const std::string mjcf = os.str();
+  // To 512 steps per output (h = 9.8e-5 s), where RK4's error (7e-13 m when measured) nears the
+  // reference's own: a finer step would not be resolved.
+  return rk4_sweep(
+      "MuJoCo RK4", [&](double) { return mjcf; }, times, doubling(1, 512), timing,
+      site_recorder(tip), [&] { return tip.measure(); });
+}
+
 }  // namespace tumble::bench
 
 #else
@@ -486,6 +545,11 @@ std::vector<MechanismRow> mujoco_planar_rows(const std::string& /*id*/, const Pl
 std::vector<MechanismRow> mujoco_a05_rows(const FlyballGovernor& /*g*/,
                                           const std::vector<double>& /*times*/,
                                           PointTrackError& /*slider*/, const Timing& /*timing*/) {
+  return {};
+}
+std::vector<MechanismRow> mujoco_chain_rows(const SpatialLinkage& /*l*/,
+                                            const std::vector<double>& /*times*/,
+                                            PointTrackError& /*tip*/, const Timing& /*timing*/) {
   return {};
 }
 
