@@ -9,8 +9,8 @@
 //   (d) the ensemble study, many runs of the tumbling body across threads and MPI processes
 //       (ensembles/ensemble.cpp; built when tumble::ensemble exists,
 //       TUMBLE_BENCH_HAVE_ENSEMBLE);
-//   (e) mechanisms: work precision of tumble's integrators on IFToMM problems (A01 the simple
-//       pendulum, A03 Andrews' mechanism, A04 Bricard's) against independent references
+//   (e) mechanisms: work precision of tumble's integrators on the IFToMM problems A01-A05 and an
+//       open spatial chain against independent references, beside the peers that are installed
 //       (mechanisms/mechanisms.hpp; --no-mechanisms skips it).
 // It prints a header, one progress line per phase (stderr), then the tables
 // (main/report.cpp) and where the files are: CSVs (main/csv.cpp), PNG
