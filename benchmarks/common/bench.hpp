@@ -26,6 +26,7 @@
 // Conventions are tumble's (docs/conventions.md): R maps body components to inertial ones,
 // omega is in body components, quaternions are scalar first.
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -331,6 +332,14 @@ inline bool torque_free(const Problem& p) {
 
 /// Whether a problem has no spring (the floors with a closed form of their own: no spring).
 inline bool closed_form_problem(const Problem& p) { return p.stiffness == 0; }
+
+/// --methods: whether the method labelled `label` is chosen by `filter` (the option's strings):
+/// every method when it is empty, else those whose label contains one of them.
+inline bool method_chosen(const std::vector<std::string>& filter, const std::string& label) {
+  return filter.empty() || std::any_of(filter.begin(), filter.end(), [&](const std::string& s) {
+           return label.find(s) != std::string::npos;
+         });
+}
 
 // ---- the scaling study (scaling/scaling.cpp) ------------------------------------------
 

@@ -54,14 +54,7 @@ bool runs_peer(const MechanismPlan& plan, const std::string& peer) {
 }
 
 void keep_wanted(const MechanismPlan& plan, std::vector<MechanismRow>& rows) {
-  if (plan.filter.empty()) {
-    return;
-  }
-  std::erase_if(rows, [&](const MechanismRow& r) {
-    return std::none_of(plan.filter.begin(), plan.filter.end(), [&](const std::string& f) {
-      return r.method.find(f) != std::string::npos;
-    });
-  });
+  std::erase_if(rows, [&](const MechanismRow& r) { return !method_chosen(plan.filter, r.method); });
 }
 
 std::vector<double> mechanism_tolerances(bool full) {

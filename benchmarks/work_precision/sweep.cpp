@@ -86,14 +86,7 @@ std::vector<Job> plan_jobs(const Options& o, const std::vector<Problem>& problem
       }
     }
   }
-  std::erase_if(jobs, [&](const Job& j) {
-    if (o.methods.empty()) {
-      return false;
-    }
-    const std::string m = j.method();
-    return std::none_of(o.methods.begin(), o.methods.end(),
-                        [&](const std::string& s) { return m.find(s) != std::string::npos; });
-  });
+  std::erase_if(jobs, [&](const Job& j) { return !method_chosen(o.methods, j.method()); });
   return jobs;
 }
 
@@ -131,12 +124,7 @@ MechanismPlan mechanism_plan(const Options& o) {
   plan.filter = o.methods;
   for (const MechanismMethod m :
        {MechanismMethod::front_door, MechanismMethod::odeint_f78, MechanismMethod::cvode_bdf}) {
-    const std::string label = mechanism_method_label(m);
-    const bool wanted =
-        o.methods.empty() || std::any_of(o.methods.begin(), o.methods.end(), [&](const auto& s) {
-          return label.find(s) != std::string::npos;
-        });
-    if (wanted) {
+    if (method_chosen(o.methods, mechanism_method_label(m))) {
       plan.methods.push_back(m);
     }
   }
