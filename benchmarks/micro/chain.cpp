@@ -1,8 +1,8 @@
 // The cost of a mechanism's right-hand side and of its projection against the number of bodies:
 // a chain of n links hinged end to end (Revolute joints about random axes, the first to the
-// ground), n from 1 to 10^4. The constraint solve is banded for a chain, so both should grow
-// linearly: micro/summarize.py reports the slope of log(time) against log(n) from 100 to 10^4
-// bodies (target <= 1.05).
+// ground), n from 1 to 10^4. The constraint solve is banded for a chain of 3 or more, so both
+// should grow linearly: micro/summarize.py reports the slope of log(time) against log(n) from 100
+// to 10^4 bodies (target <= 1.05).
 
 #include <cmath>
 #include <random>
@@ -93,10 +93,14 @@ void BM_ChainProjection(benchmark::State& st) {
 }  // namespace
 
 // Names chain_rhs/<n> and chain_projection/<n> (micro/summarize.py reads the slope from them).
+// 3 and 6 links as well: below 4 (bandwidth + 1) <= rows, where a chain took the dense solve
+// until 2026-11-28 (docs/benchmarks/mechanisms.md).
 BENCHMARK(BM_ChainRhs)
     ->Name("chain_rhs")
     ->RangeMultiplier(10)
     ->Range(1, 10000)
+    ->Arg(3)
+    ->Arg(6)
     ->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ChainProjection)
     ->Name("chain_projection")

@@ -106,3 +106,45 @@ TEST_CASE("chain: the banded and the dense pivoted solve agree on a moving spati
   CHECK((banded.joints().lambda - dense.joints().lambda).cwiseAbs().maxCoeff() <=
         1e-9 * dense.joints().lambda.cwiseAbs().maxCoeff());
 }
+
+TEST_CASE("chain: the solve's storage follows the joints' topology", "[joint]") {
+  // Three hinged links (15 rows, rows of the joints that share a link within 9 of each other):
+  // an open chain takes the banded solve, the same links with a fourth joint that closes a loop
+  // through the ground take the dense pivoted one (docs/mechanisms.md: which rows of a loop are
+  // redundant is the pivoting's choice). Both give the dense solve's rates on the chain.
+  const double l = 0.3;
+  using SceneT = Mechanism<Bodies<Link>, Joints<Revolute, Spherical>, Loads<UniformGravity>>;
+  const auto build = [&](bool closed) {
+    SceneT scene;
+    std::vector<BodyId<Link>> links;
+    const Vector3d top(0, 0, 0.5 * l), axis = Vector3d(1, 0.2, 0).normalized();
+    for (int k = 0; k < 3; ++k) {
+      links.push_back(scene.add(link(1.0 + 0.2 * k, l), {.position = Vector3d(0, 0, -(k + 0.5) * l),
+                                                         .omega = Vector3d(0.3 * k, 0, 0)}));
+      scene.add_load(links.back(), UniformGravity(Vector3d(0, 0, -9.81)));
+      if (k == 0) {
+        scene.add_joint(links[0], ground, Revolute(top, axis, Vector3d::Zero(), axis));
+      } else {
+        scene.add_joint(links[k], links[k - 1], Revolute(top, axis, -top, axis));
+      }
+    }
+    if (closed) {  // the last link's bottom held where it hangs
+      scene.add_joint(links[2], ground, Spherical(-top, Vector3d(0, 0, -3 * l)));
+    }
+    return scene;
+  };
+  const SceneT open = build(false), closed = build(true);
+  SceneWorkspace<SceneT> banded(open), dense(open), loop(closed);
+  CHECK(open.constraint_count() == 15);
+  CHECK(banded.joints().bandwidth == 9);
+  CHECK(loop.joints().bandwidth == -1);
+  dense.joints().use_dense();
+  VectorXd fb(open.size()), fd(open.size());
+  rhs(open, banded, 0.0, open.initial_state(), fb);
+  rhs(open, dense, 0.0, open.initial_state(), fd);
+  INFO("largest rate " << fd.cwiseAbs().maxCoeff() << ", difference "
+                       << (fb - fd).cwiseAbs().maxCoeff());
+  CHECK((fb - fd).cwiseAbs().maxCoeff() <= 1e-13 * fd.cwiseAbs().maxCoeff());
+  CHECK((banded.joints().lambda - dense.joints().lambda).cwiseAbs().maxCoeff() <=
+        1e-12 * dense.joints().lambda.cwiseAbs().maxCoeff());
+}

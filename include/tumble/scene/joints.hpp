@@ -108,6 +108,7 @@ inline int frozen_rows(const JointScratch& j) {
 /// the pivoted LDL^T (dense storage) or the banded one (see JointScratch).
 inline void joint_schur(JointScratch& j) {
   const bool banded = j.bandwidth >= 0;
+  const Eigen::Index m = j.c.size(), bw = j.bandwidth;
   if (banded) {
     j.band.setZero();
   } else {
@@ -121,18 +122,21 @@ inline void joint_schur(JointScratch& j) {
         if (!banded) {
           j.a.block(p.row, q.row, p.size, q.size).noalias() +=
               jp.middleRows(p.row, p.size).lazyProduct(xq.middleCols(q.row, q.size));
-        } else if (p.row >= q.row) {  // the lower triangle: rows of p at or below those of q
-          for (int r = 0; r < p.size; ++r) {
-            for (int c = 0; c < q.size && q.row + c <= p.row + r; ++c) {
-              j.band(p.row + r, p.row + r - q.row - c) +=
-                  jp.row(p.row + r).dot(xq.col(q.row + c).transpose());
-            }
+          continue;
+        }
+        if (p.row < q.row) {
+          continue;  // the upper triangle (joints' rows do not overlap)
+        }
+        // The lower triangle: in row R of p, the columns k of q up to R (band column k - R + bw).
+        for (int r = 0; r < p.size; ++r) {
+          const Eigen::Index row = p.row + r;
+          for (Eigen::Index k = q.row; k < q.row + q.size && k <= row; ++k) {
+            j.band(row, k - row + bw) += jp.row(row).dot(xq.col(k).transpose());
           }
         }
       }
     }
   }
-  const Eigen::Index m = j.c.size();
   // Rows frozen as dependent: their row and column replaced by the identity's, so that the
   // factorization solves the retained rows alone and the frozen ones get 0 (joint_solve).
   for (std::size_t i = 0; i < j.dependent.size(); ++i) {
@@ -142,10 +146,10 @@ inline void joint_schur(JointScratch& j) {
     const auto r = static_cast<Eigen::Index>(i);
     if (banded) {
       j.band.row(r).setZero();
-      for (Eigen::Index k = 1; k <= std::min<Eigen::Index>(j.bandwidth, m - 1 - r); ++k) {
-        j.band(r + k, k) = 0.0;
+      for (Eigen::Index row = r + 1; row <= std::min(m - 1, r + bw); ++row) {
+        j.band(row, r - row + bw) = 0.0;
       }
-      j.band(r, 0) = 1.0;
+      j.band(r, bw) = 1.0;
     } else {
       j.a.row(r).setZero();
       j.a.col(r).setZero();
@@ -153,7 +157,7 @@ inline void joint_schur(JointScratch& j) {
     }
   }
   for (Eigen::Index i = 0; i < m; ++i) {
-    const double d = banded ? j.band(i, 0) : j.a(i, i);
+    const double d = banded ? j.band(i, bw) : j.a(i, i);
     j.work(i) = d > 0.0 ? 1.0 / std::sqrt(d) : 0.0;
   }
   if (!banded) {
@@ -161,35 +165,38 @@ inline void joint_schur(JointScratch& j) {
     j.ldlt.compute(j.a);
     return;
   }
-  // Banded L D L^T without pivoting, in place (L below the diagonal of `band`, D in `pivots`):
-  // A is positive semidefinite, so a pivot below the rank tolerance means a dependent row, whose
-  // column of L is then zero (a basic solution, as the dense path's).
-  const Eigen::Index bw = j.bandwidth;
+  // Banded L D L^T without pivoting, in place (L below the diagonal of `band`, D in `pivots`),
+  // column by column: with pivot d = A(c, c) and the column below it gathered into `ld`, each row
+  // r of the band takes A(r, c+1..r) -= A(r, c) A(c+1..r, c) / d, one contiguous update, and then
+  // L(r, c) = A(r, c) / d. A is positive semidefinite, so a pivot below the rank tolerance means
+  // a dependent row, whose column of L is then zero (a basic solution, as the dense path's).
   for (Eigen::Index i = 0; i < m; ++i) {
-    for (Eigen::Index k = 0; k <= std::min(bw, i); ++k) {
-      j.band(i, k) *= j.work(i) * j.work(i - k);
+    const Eigen::Index k0 = std::max<Eigen::Index>(0, i - bw);
+    double* row = j.band.row(i).data() + (k0 - i + bw);
+    const double* w = j.work.data() + k0;
+    for (Eigen::Index k = 0; k <= i - k0; ++k) {
+      row[k] *= j.work(i) * w[k];
     }
   }
   j.rank = -frozen_rows(j);
+  double* col = j.ld.data();
   for (Eigen::Index c = 0; c < m; ++c) {
-    double d = j.band(c, 0);
-    for (Eigen::Index k = std::max<Eigen::Index>(0, c - bw); k < c; ++k) {
-      const double l = j.band(c, c - k);
-      d -= l * l * j.pivots(k);
-    }
+    const double d = j.band(c, bw);
     const bool independent = d > kRankTolerance;
     j.pivots(c) = independent ? d : 0.0;
     j.rank += independent ? 1 : 0;
-    for (Eigen::Index r = c + 1; r <= std::min(m - 1, c + bw); ++r) {
-      if (!independent) {
-        j.band(r, r - c) = 0.0;
-        continue;
+    const Eigen::Index below = std::min(m - 1 - c, bw);
+    for (Eigen::Index t = 0; t < below; ++t) {  // A(c + 1 + t, c), band column bw - 1 - t
+      col[t] = j.band(c + 1 + t, bw - 1 - t);
+    }
+    const double inverse = independent ? 1.0 / d : 0.0;
+    for (Eigen::Index t = 0; t < below; ++t) {
+      const double l = col[t] * inverse;
+      double* row = j.band.row(c + 1 + t).data() + (bw - t);  // A(c + 1 + t, c + 1..)
+      for (Eigen::Index k = 0; k <= t; ++k) {
+        row[k] -= l * col[k];
       }
-      double v = j.band(r, r - c);
-      for (Eigen::Index k = std::max<Eigen::Index>(0, r - bw); k < c; ++k) {
-        v -= j.band(r, r - k) * j.band(c, c - k) * j.pivots(k);
-      }
-      j.band(r, r - c) = v / d;
+      row[-1] = l;
     }
   }
 }
@@ -206,17 +213,24 @@ inline void joint_solve(JointScratch& j, const Eigen::VectorXd& b, Eigen::Vector
   }
   if (j.bandwidth >= 0) {
     const Eigen::Index m = x.size(), bw = j.bandwidth;
-    for (Eigen::Index i = 0; i < m; ++i) {  // L y = x
-      for (Eigen::Index k = std::max<Eigen::Index>(0, i - bw); k < i; ++k) {
-        x(i) -= j.band(i, i - k) * x(k);
+    for (Eigen::Index i = 1; i < m; ++i) {  // L y = x
+      const Eigen::Index k0 = std::max<Eigen::Index>(0, i - bw);
+      const double* row = j.band.row(i).data() + (k0 - i + bw);
+      double s = x(i);
+      for (Eigen::Index k = 0; k < i - k0; ++k) {
+        s -= row[k] * x(k0 + k);
       }
+      x(i) = s;
     }
     for (Eigen::Index i = 0; i < m; ++i) {  // D z = y
       x(i) = j.pivots(i) > 0.0 ? x(i) / j.pivots(i) : 0.0;
     }
-    for (Eigen::Index i = m - 1; i >= 0; --i) {  // L^T w = z
-      for (Eigen::Index r = i + 1; r <= std::min(m - 1, i + bw); ++r) {
-        x(i) -= j.band(r, r - i) * x(r);
+    for (Eigen::Index i = m - 1; i > 0; --i) {  // L^T w = z: row i of L once w(i) is final
+      const Eigen::Index k0 = std::max<Eigen::Index>(0, i - bw);
+      const double* row = j.band.row(i).data() + (k0 - i + bw);
+      const double xi = x(i);
+      for (Eigen::Index k = 0; k < i - k0; ++k) {
+        x(k0 + k) -= row[k] * xi;
       }
     }
     x = j.work.asDiagonal() * x;

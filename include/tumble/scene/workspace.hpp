@@ -41,14 +41,30 @@ struct JointScratch {
   Eigen::Matrix<double, 6, Eigen::Dynamic> xa, xb;  ///< B J^T (the bodies' wrench responses)
   Eigen::VectorXd c, gamma, rhs, lambda, work;      ///< m each
   /// J B J^T (Jacobi-scaled), in one of two storages chosen from the topology when the
-  /// workspace is made: banded when the joints that share a body have nearby rows (a chain or a
-  /// tree added in order: the cost of a solve then grows linearly with the bodies), dense with a
-  /// pivoted LDL^T otherwise (closed loops, small mechanisms).
-  int bandwidth = -1;      ///< half-bandwidth of the banded storage, -1: dense
-  Eigen::MatrixXd band;    ///< banded: row i holds A(i, i - k) in column k = 0..bandwidth, then L
+  /// workspace is made (SceneWorkspace's constructor):
+  /// - banded L D L^T, without pivoting, when the band of rows that share a body is narrower than
+  ///   the matrix and either the joints form no closed loop (a chain or a tree: no redundant rows
+  ///   to choose among; measured 0.6x the dense solve's time from 3 hinged bodies on) or the band
+  ///   is narrow (4 (bandwidth + 1) <= m: a long ladder of loops, whose cost then grows linearly);
+  /// - dense, pivoted L D L^T otherwise (closed loops, small mechanisms), whose pivoting picks
+  ///   the redundant rows of a loop by size (docs/mechanisms.md).
+  int bandwidth = -1;  ///< half-bandwidth of the banded storage, -1: dense
+  /// Banded: row i holds A(i, k) for k = i - bandwidth..i in its columns 0..bandwidth (the
+  /// diagonal last, a row's band contiguous), then L below the diagonal.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> band;
   Eigen::VectorXd pivots;  ///< banded: D of L D L^T
+  Eigen::VectorXd ld;      ///< banded: the row of L D being factored (bandwidth entries)
   Eigen::MatrixXd a;       ///< dense: m x m
   Eigen::LDLT<Eigen::MatrixXd> ldlt;
+  /// Switches to the banded storage of half-bandwidth bw (>= the rows' own, see above).
+  void use_band(int bw) {
+    const Eigen::Index m = c.size();
+    bandwidth = bw;
+    band.setZero(m, bw + 1);
+    pivots.setZero(m);
+    ld.setZero(bw);
+    a.resize(0, 0);
+  }
   /// Switches to the dense storage (a second method for a test, or a band that would be wide).
   void use_dense() {
     const Eigen::Index m = c.size();
@@ -126,10 +142,27 @@ template <class SceneT> class SceneWorkspace {
           }
         }
       }
-      if (4 * (bw + 1) <= m) {
-        j.bandwidth = bw;
-        j.band.setZero(m, bw + 1);
-        j.pivots.setZero(m);
+      // A closed loop: a joint between two bodies (or a body and the ground, node n) that the
+      // joints before it already connect.
+      std::vector<int> root(static_cast<std::size_t>(n) + 1);
+      for (std::size_t i = 0; i < root.size(); ++i) {
+        root[i] = static_cast<int>(i);
+      }
+      const auto find = [&](int x) {
+        while (root[static_cast<std::size_t>(x)] != x) {
+          x = root[static_cast<std::size_t>(x)] =
+              root[static_cast<std::size_t>(root[static_cast<std::size_t>(x)])];
+        }
+        return x;
+      };
+      bool loop = false;
+      scene.for_each_joint([&](const auto& at) {
+        const int ra = find(at.a), rb = find(at.b >= 0 ? at.b : n);
+        loop = loop || ra == rb;
+        root[static_cast<std::size_t>(ra)] = rb;
+      });
+      if (bw + 1 < m && (!loop || 4 * (bw + 1) <= m)) {
+        j.use_band(bw);
       } else {
         j.use_dense();
       }
