@@ -110,8 +110,8 @@ TEST_CASE("chain: the banded and the dense pivoted solve agree on a moving spati
 TEST_CASE("chain: the solve's storage follows the joints' topology", "[joint]") {
   // Three hinged links (15 rows, rows of the joints that share a link within 9 of each other):
   // an open chain takes the banded solve, the same links with a fourth joint that closes a loop
-  // through the ground take the dense pivoted one (docs/mechanisms.md: which rows of a loop are
-  // redundant is the pivoting's choice). Both give the dense solve's rates on the chain.
+  // through the ground take the dense one (docs/mechanisms.md: which rows of a loop come out
+  // redundant is the dense factorization's choice). Both give the dense solve's rates on the chain.
   const double l = 0.3;
   using SceneT = Mechanism<Bodies<Link>, Joints<Revolute, Spherical>, Loads<UniformGravity>>;
   const auto build = [&](bool closed) {

@@ -12,10 +12,11 @@
 // its bodies' wrenches, and the scene's accelerations pass runs as for free bodies.
 //
 // Redundant constraints (a planar linkage built of spatial joints, Bricard's mechanism) make
-// J B J^T singular though the motion exists. The solve is the pivoted LDL^T of the Jacobi-scaled
-// matrix, with pivots below kRankTolerance (relative) taken as zero: the dependent constraints
-// carry no reaction (a basic solution, not the minimum-norm one). The accelerations do not depend
-// on that choice: two solutions differ by a null vector of J^T.
+// J B J^T singular though the motion exists. The solve is an LDL^T of the Jacobi-scaled matrix
+// (banded, or Eigen's LDLT, see JointScratch), with pivots below kRankTolerance (relative) taken
+// as zero: the dependent constraints carry no reaction (a basic solution, not the minimum-norm
+// one). The accelerations do not depend on that choice: two solutions differ by a null vector of
+// J^T.
 //
 // Which rows are dependent is decided once per run, not at every evaluation: the integrators
 // freeze the rows found dependent at the initial state (freeze_dependent; JointScratch::
@@ -105,7 +106,7 @@ inline int frozen_rows(const JointScratch& j) {
 /// A = J B J^T from the pairs of joint rows that share a body, Jacobi-scaled (unit diagonal, so
 /// that the rank test compares like with like whatever the rows' units, m or rad, and the
 /// bodies' masses; a zero diagonal, a row no mobile body can change, stays zero), then factored:
-/// the pivoted LDL^T (dense storage) or the banded one (see JointScratch).
+/// Eigen's LDLT of the lower triangle (dense storage) or the banded one (see JointScratch).
 inline void joint_schur(JointScratch& j) {
   const bool banded = j.bandwidth >= 0;
   const Eigen::Index m = j.c.size(), bw = j.bandwidth;
@@ -119,13 +120,13 @@ inline void joint_schur(JointScratch& j) {
       const auto& jp = p.side == 0 ? j.ja : j.jb;
       for (const JointScratch::Touch& q : touches) {
         const auto& xq = q.side == 0 ? j.xa : j.xb;
+        if (p.row < q.row) {
+          continue;  // the upper triangle (joints' rows do not overlap): neither solve reads it
+        }
         if (!banded) {
           j.a.block(p.row, q.row, p.size, q.size).noalias() +=
               jp.middleRows(p.row, p.size).lazyProduct(xq.middleCols(q.row, q.size));
           continue;
-        }
-        if (p.row < q.row) {
-          continue;  // the upper triangle (joints' rows do not overlap)
         }
         // The lower triangle: in row R of p, the columns k of q up to R (band column k - R + bw).
         for (int r = 0; r < p.size; ++r) {

@@ -46,8 +46,9 @@ struct JointScratch {
   ///   the matrix and either the joints form no closed loop (a chain or a tree: no redundant rows
   ///   to choose among; measured 0.6x the dense solve's time from 3 hinged bodies on) or the band
   ///   is narrow (4 (bandwidth + 1) <= m: a long ladder of loops, whose cost then grows linearly);
-  /// - dense, pivoted L D L^T otherwise (closed loops, small mechanisms), whose pivoting picks
-  ///   the redundant rows of a loop by size (docs/mechanisms.md).
+  /// - dense L D L^T (Eigen's LDLT, lower triangle) otherwise: closed loops, small mechanisms.
+  ///   Its pivoting reads the original diagonal, all 1 after the scaling: which rows of a loop
+  ///   come out redundant is set by rounding (docs/mechanisms.md).
   int bandwidth = -1;  ///< half-bandwidth of the banded storage, -1: dense
   /// Banded: row i holds A(i, k) for k = i - bandwidth..i in its columns 0..bandwidth (the
   /// diagonal last, a row's band contiguous), then L below the diagonal.
