@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <numeric>
 #include <stdexcept>
 #include <tuple>
 #include <type_traits>
@@ -54,7 +55,7 @@ struct JointScratch {
   /// diagonal last, a row's band contiguous), then L below the diagonal.
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> band;
   Eigen::VectorXd pivots;  ///< banded: D of L D L^T
-  Eigen::VectorXd ld;      ///< banded: the row of L D being factored (bandwidth entries)
+  Eigen::VectorXd ld;      ///< banded: the column below the pivot being factored (bandwidth)
   Eigen::MatrixXd a;       ///< dense: m x m
   Eigen::LDLT<Eigen::MatrixXd> ldlt;
   /// Switches to the banded storage of half-bandwidth bw (>= the rows' own, see above).
@@ -145,22 +146,21 @@ template <class SceneT> class SceneWorkspace {
       }
       // A closed loop: a joint between two bodies (or a body and the ground, node n) that the
       // joints before it already connect.
-      std::vector<int> root(static_cast<std::size_t>(n) + 1);
-      for (std::size_t i = 0; i < root.size(); ++i) {
-        root[i] = static_cast<int>(i);
-      }
-      const auto find = [&](int x) {
-        while (root[static_cast<std::size_t>(x)] != x) {
-          x = root[static_cast<std::size_t>(x)] =
-              root[static_cast<std::size_t>(root[static_cast<std::size_t>(x)])];
+      const auto ground_node = static_cast<std::size_t>(n);
+      std::vector<std::size_t> root(ground_node + 1);
+      std::iota(root.begin(), root.end(), std::size_t{0});
+      const auto find = [&](std::size_t x) {
+        while (root[x] != x) {
+          x = root[x] = root[root[x]];
         }
         return x;
       };
       bool loop = false;
       scene.for_each_joint([&](const auto& at) {
-        const int ra = find(at.a), rb = find(at.b >= 0 ? at.b : n);
+        const std::size_t ra = find(static_cast<std::size_t>(at.a));
+        const std::size_t rb = find(at.b >= 0 ? static_cast<std::size_t>(at.b) : ground_node);
         loop = loop || ra == rb;
-        root[static_cast<std::size_t>(ra)] = rb;
+        root[ra] = rb;
       });
       if (bw + 1 < m && (!loop || 4 * (bw + 1) <= m)) {
         j.use_band(bw);
