@@ -344,6 +344,18 @@ class RigidBody {
                                                 const Wrench<S>& w) const {
     return velocity_rates_impl([&] { return k.rotation; }, k.omega, w);
   }
+  /// The same, written into `acceleration` and `alpha` (writable 3-vectors or segments of one,
+  /// such as the blocks of a state's rate): the scene's hot path. `acceleration` is not written
+  /// for a body held at a fixed point (its a_c is zero and has no place in the state). Returned
+  /// as a VelocityRates, the pair stayed in memory under GCC 12 -O3 even inlined, and each rate
+  /// went through the stack on its way to y': 1.2x the time of an explicit run on one body
+  /// (docs/benchmarks/floors.md, 2026-12-02).
+  template <class Acceleration, class Alpha>
+  [[gnu::always_inline]] void velocity_rates_into(const Kinematics& k, const Wrench<S>& w,
+                                                  Acceleration&& acceleration,
+                                                  Alpha&& alpha) const {
+    rates_into([&] { return k.rotation; }, k.omega, w, acceleration, alpha);
+  }
 
   /// The part of velocity_rates that is linear in the wrench: (a_c, alpha) for the wrench w at
   /// rest (omega = 0), with the attitude `rotation` (read off the centroid only): Eq. (1.32)
@@ -485,20 +497,31 @@ class RigidBody {
   VelocityRates<S> velocity_rates_impl(RotationFn&& rotation_fn, const Vector3<S>& om,
                                        const Wrench<S>& w) const {
     VelocityRates<S> vr;
+    if constexpr (fixed) {
+      vr.acceleration.setZero();
+    }
+    rates_into(rotation_fn, om, w, vr.acceleration, vr.alpha);
+    return vr;
+  }
+
+  /// velocity_rates_impl into acc and alpha (acc not written when fixed).
+  template <class RotationFn, class Acc, class Alpha>
+  [[gnu::always_inline]] void rates_into(RotationFn&& rotation_fn, const Vector3<S>& om,
+                                         const Wrench<S>& w, Acc& acc, Alpha& alpha) const {
     // Products are evaluated into named vectors: small expression trees that the compiler inlines
     // whole (nested product expressions were left as out-of-line calls, 30% of the time).
     // Eq. (1.32) through the Newton-Euler closed form of the file comment; Eq. (1.33) at the
     // centroid, where r_g = 0 removes the coupling terms.
     if constexpr (at_centroid) {
       (void)rotation_fn;
-      vr.alpha = mp_.euler_centroid(w.moment, om);  // I_g^-1 (M_g - omega x I_g omega)
-      vr.acceleration = w.force / mp_.mass();
+      alpha = mp_.euler_centroid(w.moment, om);  // I_g^-1 (M_g - omega x I_g omega)
+      acc = w.force / mp_.mass();
     } else if constexpr (fixed) {
       // The theta-rows of Eq. (1.32) with rddot_oc = 0: I_c alpha = M_c - omega x I_c omega,
       // moments about the fixed point c; the force at c (reaction included) does not enter.
       (void)rotation_fn;
-      vr.alpha = mp_.euler_reference(w.moment, om);
-      vr.acceleration.setZero();
+      (void)acc;
+      alpha = mp_.euler_reference(w.moment, om);
     } else {
       const Matrix3<S> r = rotation_fn();
       const Vector3<S>& rg = mp_.centroid();
@@ -506,11 +529,11 @@ class RigidBody {
       // Moment about the centroid: M_g = M_c - r_g x F^f.
       const Vector3<S> fb = r.transpose() * w.force;
       const Vector3<S> mg = w.moment - rg.cross(fb) - om.cross(h);
-      vr.alpha = mp_.inertia_centroid_inverse().lazyProduct(mg);
-      const Vector3<S> ab = vr.alpha.cross(rg) + om.cross(om.cross(rg));
-      vr.acceleration = w.force / mp_.mass() - r * ab;
+      const Vector3<S> al = mp_.inertia_centroid_inverse().lazyProduct(mg);
+      const Vector3<S> ab = al.cross(rg) + om.cross(om.cross(rg));
+      alpha = al;
+      acc = w.force / mp_.mass() - r * ab;
     }
-    return vr;
   }
 
   /// Cold: the attitude is read from q again.

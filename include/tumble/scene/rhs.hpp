@@ -80,13 +80,13 @@ template <bool Checked, class E, class Y, class K, class Ydot>
   constexpr int nq = Body::nq;
   const typename Body::Coords q = y.template segment<nq>(e.offset);
   if constexpr (E::quasi) {
-    ydot.template segment<Body::nx>(e.offset) =
-        body_quasi_rates<Checked>(e.body, q, k, w, stabilize);
+    body_quasi_rates_into<Checked>(e.body, q, k, w, stabilize,
+                                   ydot.template segment<Body::nx>(e.offset));
   } else {
     const typename Body::Coords qd = y.template segment<nq>(e.rates);
     ydot.template segment<nq>(e.offset) = qd;
-    ydot.template segment<nq>(e.rates) =
-        body_accelerations<Checked>(e.body, q, qd, k, w, stabilize);
+    body_accelerations_into<Checked>(e.body, q, qd, k, w, stabilize,
+                                     ydot.template segment<nq>(e.rates));
   }
 }
 

@@ -58,32 +58,39 @@ template <StateForm Form, class Body, class Q, class Qd, class S>
   }
 }
 
-/// qddot of `body` (Eq. 1.32 through RigidBody::accelerations) for the wrench w. For Euler
-/// parameters with `stabilize`, the constraint acceleration is Baumgarte-stabilized:
+/// qddot of `body` (Eq. 1.32 through RigidBody::accelerations) for the wrench w, written into
+/// qdd (a writable vector of size nq, such as the body's block of y'). For Euler parameters with
+/// `stabilize`, the constraint acceleration is Baumgarte-stabilized:
 ///   p.pddot = -|pdot|^2 - 2 g (p.pdot) - g^2 (|p|^2 - 1)/2,  g = |omega|,
 /// so that a drift of |p| = 1 decays on the body's own time scale without adding stiffness (used
 /// with Adams, which cannot project; BDF projects instead).
-/// Checked: RigidBody::accelerations, which throws NonFiniteError on a non-finite result; else
-/// the same qddot from its public pieces (velocity_rates, P::thetaddot of Eq. 1.10) unchecked,
-/// for a caller that checks the results itself (rhs.hpp, FiniteCheck::by_caller).
-template <bool Checked = true, class JBody>
-[[gnu::always_inline]] inline Vector<typename JBody::Scalar, JBody::nq> body_accelerations(
+/// qddot comes from the body's public pieces (velocity_rates_into, P::thetaddot of Eq. 1.10)
+/// straight into qdd: a temporary between them cost a fifth of an explicit run on one body
+/// (RigidBody::velocity_rates_into). Checked: a non-finite result throws NonFiniteError, naming
+/// its cause, through RigidBody::accelerations (the same values, computed again on that cold
+/// path); else unchecked, for a caller that checks the results itself (rhs.hpp,
+/// FiniteCheck::by_caller).
+template <bool Checked = true, class JBody, class Qdd>
+[[gnu::always_inline]] inline void body_accelerations_into(
     const JBody& body, const typename JBody::Coords& q, const typename JBody::Coords& qd,
     const typename JBody::Kinematics& k, const Wrench<typename JBody::Scalar>& w,
-    [[maybe_unused]] bool stabilize) {
+    [[maybe_unused]] bool stabilize, Qdd&& qdd) {
   using S = typename JBody::Scalar;
-  typename JBody::Coords qdd;
-  if constexpr (Checked) {
-    qdd = body.accelerations(q, qd, k, w);
+  using Theta = typename JBody::Theta;
+  const Theta th = q.template tail<JBody::n_theta>();
+  Vector3<S> alpha;
+  if constexpr (JBody::fixed) {
+    Vector3<S> none;  // not written: a body held at a fixed point has no a_c
+    body.velocity_rates_into(k, w, none, alpha);
   } else {
-    using Theta = typename JBody::Theta;
-    const Theta th = q.template tail<JBody::n_theta>();
-    const VelocityRates<S> vr = body.velocity_rates(th, k, w);
-    if constexpr (!JBody::fixed) {
-      qdd.template head<3>() = vr.acceleration;
+    body.velocity_rates_into(k, w, qdd.template head<3>(), alpha);
+  }
+  qdd.template tail<JBody::n_theta>() =
+      JBody::Param::thetaddot(th, Theta(qd.template tail<JBody::n_theta>()), alpha);
+  if constexpr (Checked) {
+    if (!detail::all_finite_fast(qdd)) [[unlikely]] {
+      qdd = body.accelerations(q, qd, k, w);  // the same values: throws, naming the cause
     }
-    qdd.template tail<JBody::n_theta>() =
-        JBody::Param::thetaddot(th, Theta(qd.template tail<JBody::n_theta>()), vr.alpha);
   }
   if constexpr (JBody::Param::has_constraint) {
     if (stabilize) {
@@ -103,12 +110,22 @@ template <bool Checked = true, class JBody>
       qdd.template tail<4>() += (nu + pd.squaredNorm()) * p;
     }
   }
+}
+
+/// The same, returned.
+template <bool Checked = true, class JBody>
+[[gnu::always_inline]] inline Vector<typename JBody::Scalar, JBody::nq> body_accelerations(
+    const JBody& body, const typename JBody::Coords& q, const typename JBody::Coords& qd,
+    const typename JBody::Kinematics& k, const Wrench<typename JBody::Scalar>& w, bool stabilize) {
+  typename JBody::Coords qdd;
+  body_accelerations_into<Checked>(body, q, qd, k, w, stabilize, qdd);
   return qdd;
 }
 
 /// The rate of body's quasi-velocity block x = [r_oc; theta; v; omega] (RigidBody::quasi_rates):
 /// [v; P::thetadot(theta, omega); a_c; alpha], for the wrench w and the kinematics k at x (held at
-/// a fixed point: x = [theta; omega], its rate [P::thetadot(theta, omega); alpha]).
+/// a fixed point: x = [theta; omega], its rate [P::thetadot(theta, omega); alpha]), written into
+/// xd (a writable vector of size nx, such as the body's block of y').
 ///
 /// Euler parameters with `stabilize` (Adams, which cannot project): pdot = 1/2 L(p)^T omega is
 /// tangent to every sphere |p| = const (p.L(p)^T omega = 0 for any p), so |p| is kept in exact
@@ -122,25 +139,28 @@ template <bool Checked = true, class JBody>
 /// With BDF the integrator projects instead (projection.hpp), and stabilize is false.
 /// Forced inline, as body_kinematics: GCC 12 called it out of line from the right-hand side, where
 /// it took a fifth of an explicit run's time (perf, Odeint Fehlberg 7(8) on one body).
-/// Checked: RigidBody::quasi_rates, which throws NonFiniteError on a non-finite result; else the
-/// same rate from its public pieces (velocity_rates, P::thetadot) unchecked, as for
-/// body_accelerations.
-template <bool Checked = true, class JBody>
-[[gnu::always_inline]] inline Vector<typename JBody::Scalar, JBody::nx> body_quasi_rates(
-    const JBody& body, const typename JBody::Coords& q, const typename JBody::Kinematics& k,
-    const Wrench<typename JBody::Scalar>& w, [[maybe_unused]] bool stabilize) {
+/// The rate comes from the body's public pieces (velocity_rates_into, P::thetadot) straight into
+/// xd; Checked: a non-finite result throws through RigidBody::quasi_rates, as for
+/// body_accelerations_into.
+template <bool Checked = true, class JBody, class Xd>
+[[gnu::always_inline]] inline void body_quasi_rates_into(const JBody& body,
+                                                         const typename JBody::Coords& q,
+                                                         const typename JBody::Kinematics& k,
+                                                         const Wrench<typename JBody::Scalar>& w,
+                                                         [[maybe_unused]] bool stabilize, Xd&& xd) {
   using S = typename JBody::Scalar;
-  typename JBody::QuasiCoords xd;
-  if constexpr (Checked) {
-    xd = body.quasi_rates(q, k, w);
+  const typename JBody::Theta th = q.template tail<JBody::n_theta>();
+  xd.template segment<JBody::n_theta>(JBody::n_r) = JBody::Param::thetadot(th, k.omega);
+  if constexpr (JBody::fixed) {
+    Vector3<S> none;  // not written: a body held at a fixed point has no a_c
+    body.velocity_rates_into(k, w, none, xd.template tail<3>());
   } else {
-    const typename JBody::Theta th = q.template tail<JBody::n_theta>();
-    const VelocityRates<S> vr = body.velocity_rates(th, k, w);
-    xd.template segment<JBody::n_theta>(JBody::n_r) = JBody::Param::thetadot(th, k.omega);
-    xd.template tail<3>() = vr.alpha;
-    if constexpr (!JBody::fixed) {
-      xd.template head<3>() = k.velocity;
-      xd.template segment<3>(JBody::nq) = vr.acceleration;
+    xd.template head<3>() = k.velocity;
+    body.velocity_rates_into(k, w, xd.template segment<3>(JBody::nq), xd.template tail<3>());
+  }
+  if constexpr (Checked) {
+    if (!detail::all_finite_fast(xd)) [[unlikely]] {
+      xd = body.quasi_rates(q, k, w);  // the same values: throws, naming the cause
     }
   }
   if constexpr (JBody::Param::has_constraint) {
@@ -157,6 +177,15 @@ template <bool Checked = true, class JBody>
       xd.template segment<4>(JBody::n_r) -= (S(0.5) * g * (p.squaredNorm() - S(1))) * p;
     }
   }
+}
+
+/// The same, returned.
+template <bool Checked = true, class JBody>
+[[gnu::always_inline]] inline Vector<typename JBody::Scalar, JBody::nx> body_quasi_rates(
+    const JBody& body, const typename JBody::Coords& q, const typename JBody::Kinematics& k,
+    const Wrench<typename JBody::Scalar>& w, bool stabilize) {
+  typename JBody::QuasiCoords xd;
+  body_quasi_rates_into<Checked>(body, q, k, w, stabilize, xd);
   return xd;
 }
 
