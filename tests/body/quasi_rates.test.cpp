@@ -4,8 +4,10 @@
 // written in the test from the physical state and the forces themselves (m a_g = sum F,
 // I_g alpha + omega x I_g omega = M_g; a_g = a_c + R (alpha x r_g + omega x (omega x r_g))),
 // against omega = G thetadot (Eq. 1.5), against accelerations() (the same (a_c, alpha) through
-// Eq. 1.10, bit for bit), and for the error a non-finite omega raises. For Euler parameters,
-// an Euler-angle sequence, MRP and the rotation vector, at and off the centroid.
+// Eq. 1.10, bit for bit), velocity_rates_into (the same pair written into given vectors; a
+// body held at a fixed point leaves the acceleration alone), and for the error a non-finite
+// omega raises. For Euler parameters, an Euler-angle sequence, MRP and the rotation vector, at
+// and off the centroid.
 
 #include <algorithm>
 #include <cmath>
@@ -91,6 +93,17 @@ template <class P, ReferencePoint Ref> void check_quasi_rates() {
       const tumble::VelocityRates<double> vr = body.velocity_rates(s.theta(), ps.omega, w);
       CHECK((vr.acceleration - a_c).norm() <= kTol * ag_scale);
       CHECK((vr.alpha - alpha).norm() <= kTol * alpha_scale);
+      // velocity_rates_into writes the same pair into any writable 3-vectors (here the two halves
+      // of one vector, as the scene writes them into y'), from the body's kinematics.
+      typename Body::Kinematics k;
+      k.mass_properties = &body.mass_properties();
+      k.omega = ps.omega;
+      k.rotation = ps.rotation;
+      Eigen::Matrix<double, 6, 1> into;
+      into.fill(std::numeric_limits<double>::quiet_NaN());
+      body.velocity_rates_into(k, w, into.head<3>(), into.tail<3>());
+      CHECK((into.head<3>() - a_c).norm() <= kTol * ag_scale);
+      CHECK((into.tail<3>() - alpha).norm() <= kTol * alpha_scale);
       const typename Body::Coords qdd = body.accelerations(s.q, s.qdot, w);
       // The same computation with the same omega: the body's own omega = G thetadot (written out
       // by P::omega; s.omega is the product with the matrix G, equal to it up to rounding).
@@ -111,6 +124,32 @@ TEMPLATE_LIST_TEST_CASE("quasi_rates: the Newton-Euler rates of [r; theta; v; om
                         "[body][quasi]", QuasiParameterizations) {
   check_quasi_rates<TestType, ReferencePoint::centroid>();
   check_quasi_rates<TestType, ReferencePoint::offset>();
+}
+
+TEST_CASE("velocity_rates_into: a body held at a fixed point writes alpha only", "[body][quasi]") {
+  using Body = tumble::RigidBody<tumble::EulerParameters, ReferencePoint::fixed_point>;
+  const Vector3d ig(1.0, 2.0, 3.0);
+  const Vector3d r(0.1, -0.2, 0.3);  // the centroid from the fixed point c, body frame
+  const Body body(tumble::MassProperties<double>::about_centroid(1.0, ig.asDiagonal(), r),
+                  Vector3d(0.5, 0.5, 1.0));
+  Body::Kinematics k;
+  k.mass_properties = &body.mass_properties();
+  k.omega = Vector3d(0.3, 2.0, -0.5);
+  tumble::Wrench<double> w;
+  w.moment = Vector3d(0.7, -0.1, 0.2);
+  Vector3d acceleration = Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  Vector3d alpha = Vector3d::Zero();
+  body.velocity_rates_into(k, w, acceleration, alpha);
+  CHECK(acceleration.array().isNaN().all());  // a fixed body has no a_c: left as it was
+  // Euler's equations about the fixed point c, I_c alpha + omega x I_c omega = M_c, with I_c by
+  // the parallel-axis theorem (mass 1) from the centroid's principal inertia.
+  const Matrix3d ic =
+      Matrix3d(ig.asDiagonal()) + (r.squaredNorm() * Matrix3d::Identity() - r * r.transpose());
+  const Vector3d residual = ic * alpha + k.omega.cross(ic * k.omega) - w.moment;
+  CHECK(residual.norm() < kTol * (w.moment.norm() + k.omega.squaredNorm() * ic.norm()));
+  const tumble::VelocityRates<double> vr = body.velocity_rates(Body::Theta::Zero(), k, w);
+  CHECK(vr.alpha == alpha);  // the same computation
+  CHECK(vr.acceleration == Vector3d::Zero());
 }
 
 TEST_CASE("quasi_rates: a non-finite omega is reported as such", "[body][quasi]") {
