@@ -321,7 +321,7 @@ template <class S> class PhiFunctions {
   bool have_trig_ = false;
   bool have_series_ = false;
   // Value-initialized: each is read only once its flag above is set, which GCC's
-  // -Wmaybe-uninitialized does not follow at -O1 (the tests' optimization). The stores are off
+  // -Wmaybe-uninitialized does not follow at -O1 (a -Werror build there failed). The stores are off
   // the hot path: in registers they vanish (the inlined series below the threshold), and
   // closed_forms, the one out-of-line user, is cold (GCC 12 -O3: 80 bytes zeroed there, nothing
   // else changed).
