@@ -646,6 +646,21 @@ TEST_CASE("project() takes Euler parameters onto their constraint manifold", "[s
   VectorXd corr2(scene.size());
   tumble::project(scene, y, corr2, none);
   CHECK(corr2 == corr);
+
+  // In place (what the explicit integrator applies): the same map, p exactly p / |p| as Eigen
+  // computes it, and nothing else touched.
+  VectorXd yi = y;
+  tumble::project_in_place(scene, yi);
+  CHECK(tumble::constraint_drift(scene, SceneState{yi, st.base}) < 1e-15);
+  for (int o : {oa, od}) {
+    const Vector4d p = y.segment<4>(o + 3);
+    CHECK(yi.segment<4>(o + 3) == Vector4d(p / p.norm()));
+    CHECK(max_abs(yi.segment<4>(o + 10) - yp.segment<4>(o + 10)) < 1e-16);
+  }
+  CHECK(yi.segment<3>(oa) == y.segment<3>(oa));
+  CHECK(yi.segment<3>(oa + 7) == y.segment<3>(oa + 7));
+  CHECK(yi.segment<12>(scene.offset(c)) == y.segment<12>(scene.offset(c)));
+  CHECK(max_abs(yi - yp) < 1e-16);
 }
 
 // ---- allocations -------------------------------------------------------------------------------

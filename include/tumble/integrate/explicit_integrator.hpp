@@ -77,7 +77,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     ws_.stabilize_constraints = options_.stabilize_quaternions;
     const int n = scene.size();
     if constexpr (N == Eigen::Dynamic) {
-      for (State* v : {&x_, &dxdt_, &x_old_, &dxdt_old_, &x_new_, &dxdt_new_, &x_tmp_, &corr_}) {
+      for (State* v : {&x_, &dxdt_, &x_old_, &dxdt_old_, &x_new_, &dxdt_new_, &x_tmp_}) {
         v->assign(static_cast<std::size_t>(n), 0.0);
       }
     }
@@ -304,9 +304,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   /// mechanism's joints (scene/assembly.hpp); false when the scene has neither (y unchanged).
   template <class Y> bool project_onto_constraints(Y& y) {
     if constexpr (SceneT::has_constraints) {
-      Eigen::VectorXd no_error;  // empty: no local error estimate to project (no allocation)
-      tumble::project(*scene_, y, map(corr_), no_error);
-      y += map(corr_);
+      tumble::project_in_place(*scene_, y);
     }
     if constexpr (SceneT::has_joints) {
       // Where the rows frozen as redundant no longer leave the others independent, they are
@@ -582,7 +580,6 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   detail::StepRun window_;          ///< the attempts since the last stiffness test
   double t_ = 0.0, h_ = 0.0;        ///< time, next step size
   double t_eval_ = 0.0;             ///< the time of the last evaluation of the scene
-  State corr_{};                    ///< the projection's correction
   CacheLineVector<double> g_, g0_;  ///< chart roots at a step's end and start
   std::vector<double> deep_;        ///< per chart body: roots below this reject a step
   CacheLineVector<double> ev_old_;  ///< event functions at the step's start

@@ -399,9 +399,7 @@ AssemblyReport assemble(const SceneT& scene, SceneState& s, const AssemblyOption
   SceneWorkspace<SceneT> ws(scene);
   Eigen::VectorXd y = s.y;
   if constexpr (SceneT::has_constraints) {
-    Eigen::VectorXd corr(y.size()), no_error;
-    project(scene, y, corr, no_error);
-    y += corr;
+    project_in_place(scene, y);
   }
   detail::project_constraints(
       scene, ws, y, std::span<const Matrix3<double>>(s.base), options.tolerance,

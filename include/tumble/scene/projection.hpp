@@ -54,4 +54,22 @@ void project(const SceneT& scene, const Y& y, C&& corr, E&& err) {
   });
 }
 
+/// The same map applied to y in place, without an error estimate: p -> p/|p| and, in the
+/// generalized form, pdot -> pdot - (pn.pdot) pn with pn the new p. What an explicit integrator
+/// applies after each step: no correction vector to clear and add back (adding p/|p| - p to p
+/// rounds twice), and nothing for a body without the constraint.
+template <class SceneT, class Y> void project_in_place(const SceneT& scene, Y& y) {
+  scene.for_each_entry([&](const auto& e) {
+    using Body = std::remove_cvref_t<decltype(e.body)>;
+    if constexpr (Body::Param::has_constraint) {
+      auto p = y.template segment<4>(e.offset + e.theta_at);
+      p /= p.norm();
+      if constexpr (!std::remove_cvref_t<decltype(e)>::quasi) {
+        auto pd = y.template segment<4>(e.rates + e.theta_at);
+        pd -= p.dot(pd) * p;
+      }
+    }
+  });
+}
+
 }  // namespace tumble
