@@ -117,9 +117,11 @@ MechanismResult run_mechanism_a04(const MechanismPlan& plan, const std::function
                 duration(reference_seconds) + "; the twin at 1e-12 is " + sci(uncertainty) +
                 " m from it: errors near that are not resolved";
   r.rows = mechanism_sweep(plan, six.scene, times, record, measure, step);
-  // MuJoCo, when installed: the same output times, measured by the same `p3`.
+  // MuJoCo, when installed: the same linkage (five hinges its tree, the sixth two <connect>s),
+  // output times and `p3`.
   if (runs_peer(plan, "MuJoCo")) {
-    const std::vector<MechanismRow> peer = mujoco_a04_rows(times, p3, plan.timing);
+    const std::vector<MechanismRow> peer =
+        mujoco_spatial_rows(peer_linkage(six), times, p3, plan.timing);
     r.rows.insert(r.rows.end(), peer.begin(), peer.end());
   }
   // Exudyn, when installed: the same six hinges (redundant), outputs and `p3`.

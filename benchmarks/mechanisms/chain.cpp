@@ -112,7 +112,7 @@ MechanismResult run_mechanism_chain(const MechanismPlan& plan, const std::functi
     add(pinocchio_chain_rows(l, times, plan.tolerances, tip, plan.timing));
   }
   if (runs_peer(plan, "MuJoCo")) {
-    add(mujoco_chain_rows(l, times, tip, plan.timing));
+    add(mujoco_spatial_rows(l, times, tip, plan.timing));
   }
   if (runs_peer(plan, "Exudyn")) {
     add(exudyn_chain_rows(l, times, tip, plan.timing));

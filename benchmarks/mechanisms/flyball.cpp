@@ -86,6 +86,11 @@ MechanismResult run_mechanism_a05(const MechanismPlan& plan, const std::function
     const std::vector<MechanismRow> peer = mujoco_a05_rows(data, times, slider, plan.timing);
     r.rows.insert(r.rows.end(), peer.begin(), peer.end());
   }
+  // Exudyn, when installed: the same data, outputs and `slider`.
+  if (runs_peer(plan, "Exudyn")) {
+    const std::vector<MechanismRow> peer = exudyn_a05_rows(data, times, slider, plan.timing);
+    r.rows.insert(r.rows.end(), peer.begin(), peer.end());
+  }
   return r;
 }
 

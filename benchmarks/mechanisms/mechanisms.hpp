@@ -9,7 +9,7 @@
 //   a04  Bricard's mechanism (A04), redundant: no closed form, a run at tight tolerance of its
 //        non-redundant twin (examples/bricard.cpp), stated as such
 //   a05  the stiff flyball governor (A05): a second model in four minimal coordinates
-//        (tests/joint/flyball_reference.hpp); MuJoCo runs it, Exudyn not yet
+//        (tests/joint/flyball_reference.hpp); MuJoCo and Exudyn run it
 //   chain an open spatial chain of six rods on hinges about axes not all parallel, from the
 //        ground, swinging under gravity: a second model in the six joint angles (recursive
 //        Newton-Euler), integrated in long double (tests/joint/chain_reference.hpp)
@@ -162,8 +162,9 @@ struct BarPendulum {
 
 /// A spatial linkage of rigid bodies and hinges as the peers build it, under uniform gravity:
 /// A04 (filled by mechanisms/bricard.cpp from the example's scene), at rest at the start, and the
-/// open chain (mechanisms/chain.cpp, from the second model's start), moving. In an open chain,
-/// hinge i holds body a = i to its parent b < i (or the ground), so the hinges are the tree.
+/// open chain (mechanisms/chain.cpp, from the second model's start), moving. Hinge i < n (n
+/// bodies) holds body a = i to its parent b < i (or the ground), so these hinges are a tree; a
+/// further hinge (A04's sixth) closes a loop.
 struct SpatialLinkage {
   struct Body {
     Eigen::Vector3d centroid;                            ///< (m), where the body frame sits
@@ -209,9 +210,6 @@ struct FlyballGovernor {
 /// A01: the bob's track at `times`, measured by `bob` (its closed-form reference);
 std::vector<MechanismRow> mujoco_a01_rows(const std::vector<double>& times, PointTrackError& bob,
                                           const Timing& timing);
-/// A04: P3's track at `times`, measured by `p3` (the twin's reference);
-std::vector<MechanismRow> mujoco_a04_rows(const std::vector<double>& times, PointTrackError& p3,
-                                          const Timing& timing);
 /// A02, A03: the linkage `m` of problem `id` ("a03": the model's name) over `times`, the links'
 /// absolute angles at every output (the hinge angles summed along the tree) measured by `measure`.
 std::vector<MechanismRow> mujoco_planar_rows(const std::string& id, const PlanarLinkage& m,
@@ -224,11 +222,14 @@ std::vector<MechanismRow> mujoco_a05_rows(const FlyballGovernor& g,
                                           const std::vector<double>& times, PointTrackError& slider,
                                           const Timing& timing);
 
-/// The open chain (hinge i from body i to its parent, no loop, rates at the start as `l` gives
-/// them; std::invalid_argument otherwise): the tracked point at `times`, measured by `tip`.
-std::vector<MechanismRow> mujoco_chain_rows(const SpatialLinkage& l,
-                                            const std::vector<double>& times, PointTrackError& tip,
-                                            const Timing& timing);
+/// A04 and the open chain: the linkage `l` over `times`, its tracked point measured by `track`.
+/// Hinges 0 to n - 1 (n bodies) are the tree, MuJoCo's hinge joints: hinge i holds body i to a
+/// parent < i or the ground (std::invalid_argument otherwise), with the rate `l` gives it at the
+/// start; any further hinge closes a loop (A04's sixth), as two <connect>s on its axis, run with
+/// MuJoCo's default softness and with the stiffest setting at the step.
+std::vector<MechanismRow> mujoco_spatial_rows(const SpatialLinkage& l,
+                                              const std::vector<double>& times,
+                                              PointTrackError& track, const Timing& timing);
 
 /// Pinocchio's aba on the open chain `l` (as MuJoCo's rows take it), q' = v, v' = aba(q, v, 0)
 /// integrated by Boost.Odeint's controlled Fehlberg 7(8) at rtol = atol = each of `tolerances`
@@ -252,6 +253,10 @@ std::vector<MechanismRow> exudyn_a01_rows(const BarPendulum& p, const std::vecto
 /// A04: the linkage `l`, its tracked point at `times` measured by `p3`;
 std::vector<MechanismRow> exudyn_a04_rows(const SpatialLinkage& l, const std::vector<double>& times,
                                           PointTrackError& p3, const Timing& timing);
+/// A05: the governor `g` (its slider's height written as (s, 0, 0)), measured by `slider`.
+std::vector<MechanismRow> exudyn_a05_rows(const FlyballGovernor& g,
+                                          const std::vector<double>& times, PointTrackError& slider,
+                                          const Timing& timing);
 /// the open chain: the linkage `l` (moving at the start, not redundant), its tracked point at
 /// `times` measured by `tip`;
 std::vector<MechanismRow> exudyn_chain_rows(const SpatialLinkage& l,

@@ -7,14 +7,14 @@
 // Exudyn is a Python package over a C++ core with no C or C++ interface of its own, so each
 // problem runs in a Python process of its own: this file writes the problem's data (from tumble's
 // own problem: mechanisms.hpp's BarPendulum, PlanarLinkage, SpatialLinkage for A04 and the open
-// chain), the output times, the ladder of steps and tumble's Timing to a JSON file, runs
-// peers/exudyn_mechanisms.py on it, and reads back, for each run, its times, counters and what the
-// problem measures. The script builds the model in Exudyn (its top comment describes the models
-// and settings), times only exu.SolveDynamic and writes the tracked point at each output (A01,
-// A04, the chain) or the links' absolute angles at each output (A02, A03); the error is computed
-// here, by the very object that measures tumble's rows. A failure of the script (a Python error, a
-// missing module) is reported on stderr and gives no rows; a run that Exudyn fails (Newton
-// diverging at a coarse step) is a failed row.
+// chain, FlyballGovernor for A05), the output times, the ladder of steps and tumble's Timing to a
+// JSON file, runs peers/exudyn_mechanisms.py on it, and reads back, for each run, its times,
+// counters and what the problem measures. The script builds the model in Exudyn (its top comment
+// describes the models and settings), times only exu.SolveDynamic and writes the tracked point at
+// each output (A01, A04, the chain) or the links' absolute angles at each output (A02, A03); the
+// error is computed here, by the very object that measures tumble's rows. A failure of the script
+// (a Python error, a missing module) is reported on stderr and gives no rows; a run that Exudyn
+// fails (Newton diverging at a coarse step) is a failed row.
 //
 // The rows: method "Exudyn GeneralizedAlpha" (index-3 generalized-alpha, spectral radius 0.9)
 // and "Exudyn TrapezoidalIndex2" (the trapezoidal rule with the constraints differentiated once),
@@ -266,6 +266,24 @@ std::vector<MechanismRow> exudyn_a04_rows(const SpatialLinkage& l, const std::ve
       p3, timing);
 }
 
+std::vector<MechanismRow> exudyn_a05_rows(const FlyballGovernor& g,
+                                          const std::vector<double>& times, PointTrackError& slider,
+                                          const Timing& timing) {
+  std::ostringstream os;
+  os.precision(17);
+  os << common_json("a05", times, doubling(1, 1024), timing)
+     << ", \"flyball\": {\"gravity\": " << g.gravity << ", \"shaft_mass\": " << g.shaft_mass
+     << ", \"shaft_length\": " << g.shaft_length << ", \"shaft_inertia\": " << json(g.shaft_inertia)
+     << ", \"slider_mass\": " << g.slider_mass << ", \"slider_inertia\": " << g.slider_inertia
+     << ", \"rod_mass\": " << g.rod_mass << ", \"rod_length\": " << g.rod_length
+     << ", \"rod_centroid\": " << g.rod_centroid << ", \"rod_axial\": " << g.rod_axial
+     << ", \"rod_transverse\": " << g.rod_transverse << ", \"offset\": " << g.offset
+     << ", \"top\": " << g.top << ", \"stiffness\": " << g.stiffness
+     << ", \"damping\": " << g.damping << ", \"rest_length\": " << g.rest_length
+     << ", \"s0\": " << g.s0 << ", \"alpha\": " << g.alpha << ", \"spin\": " << g.spin << "}";
+  return point_rows("a05", os.str(), slider, timing);
+}
+
 std::vector<MechanismRow> exudyn_chain_rows(const SpatialLinkage& l,
                                             const std::vector<double>& times, PointTrackError& tip,
                                             const Timing& timing) {
@@ -352,6 +370,11 @@ std::vector<MechanismRow> exudyn_a01_rows(const BarPendulum& /*p*/,
 std::vector<MechanismRow> exudyn_a04_rows(const SpatialLinkage& /*l*/,
                                           const std::vector<double>& /*times*/,
                                           PointTrackError& /*p3*/, const Timing& /*timing*/) {
+  return {};
+}
+std::vector<MechanismRow> exudyn_a05_rows(const FlyballGovernor& /*g*/,
+                                          const std::vector<double>& /*times*/,
+                                          PointTrackError& /*slider*/, const Timing& /*timing*/) {
   return {};
 }
 std::vector<MechanismRow> exudyn_planar_rows(const std::string& /*id*/, const PlanarLinkage& /*m*/,

@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""tumble_bench, study (e): Exudyn on the IFToMM mechanisms A01-A04 and the open chain.
+"""tumble_bench, study (e): Exudyn on the IFToMM mechanisms A01-A05 and the open chain.
 
 Run by peers/exudyn_mechanisms.cpp through the Python found at configure time:
 
     python exudyn_mechanisms.py INPUT.json OUTPUT.txt
 
 INPUT (written by the C++ side from the data of tumble's own problem):
-    problem   "a01", "a02", "a03", "a04" or "chain"
+    problem   "a01", "a02", "a03", "a04", "a05" or "chain"
     times     the output times (s), increasing, from the first output to the end
     ladder    steps per output interval, one run per entry (the step h = first time / entry)
     solvers   Exudyn's DynamicSolverType names to run, e.g. ["GeneralizedAlpha"]
@@ -22,16 +22,18 @@ INPUT (written by the C++ side from the data of tumble's own problem):
               world at the start), hinges (bodies a, b, -1 the ground; a point and an axis in the
               world), gravity, the tracked point (body, point in body axes), redundant (whether
               the hinges' rows are of deficient rank: A04's are, the chain's are not)
+    flyball   A05: mechanisms.hpp's FlyballGovernor (z up, the shaft from the origin, the rods'
+              hinges at (+-offset, 0, top), everything turning about z at `spin` at the start)
 
 OUTPUT, tab-separated lines (a file, since Exudyn prints on stdout):
     run  solver  substeps  h  ok  steps  newton_iterations  jacobians  |C|  walls  cpus  message
     point  k  x  y  z         A01, A04, chain: the tracked point at output k (after each
-                              successful run)
+                              successful run); A05: the slider's height as (s, 0, 0)
     angles  k  a0  a1 ...     A02/A03: the links' absolute angles at output k (rad, over the turns)
     end                       written last: the file is complete
 
-The models are in absolute coordinates, as tumble's: A01 and A04 rigid bodies with Euler
-parameters (NodeRigidBodyEP, ObjectRigidBody), A02 and A03 planar rigid bodies (NodeRigidBody2D:
+The models are in absolute coordinates, as tumble's: A01, A04, A05 and the chain rigid bodies with
+Euler parameters (NodeRigidBodyEP, ObjectRigidBody), A02 and A03 planar rigid bodies (NodeRigidBody2D:
 x, y and the angle per link, Exudyn's element for a planar linkage, which avoids the nine
 redundant rows of spatial hinges in a plane). Exudyn's explicit solvers refuse joints (its
 documentation: "explicit solvers are in general only applicable for systems without
@@ -53,8 +55,8 @@ import numpy as np  # noqa: E402
 from exudyn.itemInterface import (  # noqa: E402
     LoadMassProportional, LoadTorqueVector, MarkerBodyMass, MarkerBodyPosition, MarkerBodyRigid,
     NodeRigidBody2D, NodeRigidBodyEP, ObjectConnectorDistance, ObjectConnectorSpringDamper,
-    ObjectGround, ObjectJointRevolute2D, ObjectJointRevoluteZ, ObjectRigidBody,
-    ObjectRigidBody2D, SensorBody, SensorNode)
+    ObjectGround, ObjectJointPrismaticX, ObjectJointRevolute2D, ObjectJointRevoluteZ,
+    ObjectRigidBody, ObjectRigidBody2D, SensorBody, SensorNode)
 from exudyn.rigidBodyUtilities import (  # noqa: E402
     AngularVelocity2EulerParameters_t, RotationMatrix2EulerParameters)
 
@@ -69,6 +71,22 @@ def frame_with_z(axis):
     return np.column_stack([x, np.cross(z, x), z])
 
 
+def frame_with_x(axis):
+    """An orthonormal frame whose first column is `axis` (a prismatic joint's marker frame:
+    JointPrismaticX slides along the markers' x)."""
+    f = frame_with_z(axis)
+    return np.column_stack([f[:, 2], f[:, 0], f[:, 1]])
+
+
+def marker_with_frame(mbs, body, local, frame):
+    """A rigid marker on `body` at `local` (body axes) and the joint's frame there: in the marker
+    (Exudyn >= 1.12.244) or, returned, for the joint's rotationMarker argument."""
+    if hasattr(exu, "HT"):
+        return mbs.AddMarker(MarkerBodyRigid(
+            bodyNumber=body, localHT=exu.HT(rotation=frame, translation=list(local)))), None
+    return mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=list(local))), frame
+
+
 class Model:
     """An assembled Exudyn system, what the run records and how |C| is measured after it."""
 
@@ -80,6 +98,7 @@ class Model:
         self.pairs = []  # (body, local point, body, local point) that must coincide: |C|
         self.nodes = None  # A02/A03: (sensor, starting angle) per link, its angle stored
         self.redundant = False  # A04: constraint rows of deficient rank
+        self.height = False  # A05: the tracked point's height z is written, as (z, 0, 0)
 
     def point(self, body, local):
         """A body point in the world (Exudyn's output at the current state), m."""
@@ -147,12 +166,8 @@ def spatial(data):
         else:
             c, rot = frames[index]
             body, local, frame = bodies[index], rot.T @ (at - c), frame_with_z(rot.T @ axis)
-        if hasattr(exu, "HT"):  # Exudyn >= 1.12.244: the marker carries the hinge's frame
-            number = mbs.AddMarker(MarkerBodyRigid(
-                bodyNumber=body, localHT=exu.HT(rotation=frame, translation=list(local))))
-            return number, None, (None if index < 0 else body), local
-        number = mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=list(local)))
-        return number, frame, (None if index < 0 else body), local
+        number, given = marker_with_frame(mbs, body, local, frame)
+        return number, given, (None if index < 0 else body), local
 
     for h in data["hinges"]:
         at, axis = np.asarray(h["at"], float), np.asarray(h["axis"], float)
@@ -166,6 +181,88 @@ def spatial(data):
                                         localPosition=list(track["point"]), storeInternal=True,
                                         outputVariableType=exu.OutputVariableType.Position))
     m.redundant = data.get("redundant", True)
+    return m
+
+
+def flyball(data):
+    """A05: shaft, slider and the two rods (each with its ball one body) as rigid bodies with Euler
+    parameters at their centroids, all turning about z at `spin` at the start; the shaft on a
+    JointRevoluteZ to the ground at the origin, the slider on a JointPrismaticX along the shaft's
+    axis (it turns with the shaft), each rod on a JointRevoluteZ about y at the shaft's top, the
+    spring-dampers ObjectConnectorSpringDamper from each rod's midpoint to the slider's point
+    (+-offset, 0, 0), gravity by LoadMassProportional. The tracked point: the slider's centre,
+    its height written."""
+    m = Model()
+    mbs = m.mbs
+    spin = np.array([0.0, 0.0, data["spin"]])
+    gravity = [0.0, 0.0, -data["gravity"]]
+
+    def body(centroid, rot, mass, inertia):  # inertia: the principal moments in body axes
+        centroid = np.asarray(centroid, float)
+        ep = RotationMatrix2EulerParameters(rot)
+        node = mbs.AddNode(NodeRigidBodyEP(
+            referenceCoordinates=list(centroid) + list(ep),
+            initialVelocities=list(np.cross(spin, centroid)) +
+            list(AngularVelocity2EulerParameters_t(spin, ep))))
+        number = mbs.AddObject(ObjectRigidBody(mass=mass, inertia=list(inertia) + [0, 0, 0],
+                                               nodeNumber=node))
+        mbs.AddLoad(LoadMassProportional(
+            markerNumber=mbs.AddMarker(MarkerBodyMass(bodyNumber=number)), loadVector=gravity))
+        return number
+
+    half = 0.5 * data["shaft_length"]
+    shaft = body([0, 0, half], np.eye(3), data["shaft_mass"], data["shaft_inertia"])
+    j = data["slider_inertia"]
+    slider = body([0, 0, data["s0"]], np.eye(3), data["slider_mass"], [j, j, j])
+    z, y = np.array([0.0, 0, 1]), np.array([0.0, 1, 0])
+    # The shaft turns about z at its bottom end, the origin.
+    ma, fa = marker_with_frame(mbs, m.ground, [0, 0, 0], frame_with_z(z))
+    mb, fb = marker_with_frame(mbs, shaft, [0, 0, -half], frame_with_z(z))
+    mbs.AddObject(ObjectJointRevoluteZ(
+        markerNumbers=[ma, mb], **({} if fa is None else {"rotationMarker0": fa,
+                                                          "rotationMarker1": fb})))
+    m.pairs.append((None, [0, 0, 0], shaft, [0, 0, -half]))
+    # The slider slides along the shaft's axis and turns with it.
+    ma, fa = marker_with_frame(mbs, shaft, [0, 0, data["s0"] - half], frame_with_x(z))
+    mb, fb = marker_with_frame(mbs, slider, [0, 0, 0], frame_with_x(z))
+    mbs.AddObject(ObjectJointPrismaticX(
+        markerNumbers=[ma, mb], **({} if fa is None else {"rotationMarker0": fa,
+                                                          "rotationMarker1": fb})))
+    alpha, c = data["alpha"], data["rod_centroid"]
+    for side in (1.0, -1.0):
+        hinge = np.array([side * data["offset"], 0, data["top"]])
+        along = np.array([side * math.cos(alpha), 0, -math.sin(alpha)])
+        turn = alpha if side > 0 else math.pi - alpha  # about y: body x from hinge to ball
+        rot = np.array([[math.cos(turn), 0, math.sin(turn)], [0, 1, 0],
+                        [-math.sin(turn), 0, math.cos(turn)]])
+        rod = body(hinge + c * along, rot, data["rod_mass"],
+                   [data["rod_axial"], data["rod_transverse"], data["rod_transverse"]])
+        on_shaft = hinge - np.array([0, 0, half])
+        ma, fa = marker_with_frame(mbs, rod, [-c, 0, 0], frame_with_z(y))
+        mb, fb = marker_with_frame(mbs, shaft, on_shaft, frame_with_z(y))
+        mbs.AddObject(ObjectJointRevoluteZ(
+            markerNumbers=[ma, mb], **({} if fa is None else {"rotationMarker0": fa,
+                                                              "rotationMarker1": fb})))
+        m.pairs.append((rod, [-c, 0, 0], shaft, list(on_shaft)))
+        mid = mbs.AddMarker(MarkerBodyPosition(
+            bodyNumber=rod, localPosition=[0.5 * data["rod_length"] - c, 0, 0]))
+        end = mbs.AddMarker(MarkerBodyPosition(bodyNumber=slider,
+                                               localPosition=[side * data["offset"], 0, 0]))
+        mbs.AddObject(ObjectConnectorSpringDamper(
+            markerNumbers=[mid, end], stiffness=data["stiffness"], damping=data["damping"],
+            referenceLength=data["rest_length"]))
+    m.sensor = mbs.AddSensor(SensorBody(bodyNumber=slider, localPosition=[0, 0, 0],
+                                        storeInternal=True,
+                                        outputVariableType=exu.OutputVariableType.Position))
+    m.height = True
+    hinges = m.residual
+
+    def residual():  # the hinges' points apart, and the slider's centre off the shaft's axis
+        axis = m.point(shaft, [0, 0, 0]), m.point(shaft, [0, 0, half])
+        u = (axis[1] - axis[0]) / np.linalg.norm(axis[1] - axis[0])
+        d = m.point(slider, [0, 0, 0]) - axis[0]
+        return max(hinges(), float(np.linalg.norm(d - d.dot(u) * u)))
+    m.residual = residual
     return m
 
 
@@ -317,8 +414,9 @@ def run(data, build, solver, substeps, out):
     try:
         if ok and model.sensor is not None:
             stored = outputs(model.mbs.GetSensorStoredData(model.sensor), times)
-            record = ["point\t%d\t%.17g\t%.17g\t%.17g" % ((k,) + tuple(row[1:4]))
-                      for k, row in enumerate(stored)]
+            record = ["point\t%d\t%.17g\t%.17g\t%.17g" % (
+                (k,) + ((row[3], 0.0, 0.0) if model.height else tuple(row[1:4])))
+                for k, row in enumerate(stored)]
         if ok and model.nodes is not None:
             stored = [outputs(model.mbs.GetSensorStoredData(sensor), times)
                       for sensor, _ in model.nodes]
@@ -348,6 +446,7 @@ def main():
                 "a02": lambda: planar(data["linkage"]),
                 "a03": lambda: planar(data["linkage"]),
                 "a04": lambda: spatial(data["spatial"]),
+                "a05": lambda: flyball(data["flyball"]),
                 "chain": lambda: spatial(data["spatial"])}
     build = builders[data["problem"]]
     with open(sys.argv[2], "w") as out:

@@ -14,9 +14,10 @@
 //        rotational inertia (1e-12 kg m^2: a point mass, as the reference is; tumble's ball of
 //        4e-5 kg m^2 hangs on a bar with spherical ends and does not turn, while a hinge would
 //        turn it and add its inertia to the bar's, 8.7e-4 m off the closed form after 10 s);
-//   A04  five hinges from the ground along the cube's edges (as examples/bricard.cpp), the rods
-//        1 kg, 1 m, 0.1 m square, and the sixth hinge, at P5, closed by two <connect>s (P5 and
-//        a point 1 m along its axis: a hinge is two points of its axis);
+//   A04  built from the example's scene by mechanisms/bricard.cpp (SpatialLinkage), as the
+//        chain below: the five hinges from the ground along the cube's edges its tree, and the
+//        sixth hinge, at P5, closed by two <connect>s (P5 and a point 1 m along its axis: a
+//        hinge is two points of its axis);
 //   A05  an open tree (shaft, slider, two rods with their balls), the spring-dampers spatial
 //        tendons (stiffness, damping, springlength), run with RK4 and with implicitfast;
 //   A03  the links as a tree from the ground, built from the example's data by
@@ -234,56 +235,6 @@ std::vector<MechanismRow> mujoco_a01_rows(const std::vector<double>& times, Poin
                    [&] { return bob.measure(); });
 }
 
-std::vector<MechanismRow> mujoco_a04_rows(const std::vector<double>& times, PointTrackError& p3,
-                                          const Timing& timing) {
-  // Rod i runs from P_i to P_i+1 (examples/bricard.cpp); its body frame sits at P_i, parallel to
-  // the world's, its hinge there about the axis perpendicular to both links that meet at P_i.
-  const double m = 1.0, l = 1.0, s = 0.1;
-  const double along = m * s * s / 6, across = m * (l * l + s * s) / 12;
-  struct Rod {
-    const char* pos;         // P_i, in the parent's frame
-    const char* axis;        // the hinge at P_i
-    std::array<int, 3> dir;  // P_i+1 - P_i
-  };
-  const std::array<Rod, 5> rods{{{"0 0 0", "0 1 0", {1, 0, 0}},
-                                 {"1 0 0", "0 0 1", {0, 1, 0}},
-                                 {"0 1 0", "1 0 0", {0, 0, 1}},
-                                 {"0 0 1", "0 1 0", {-1, 0, 0}},
-                                 {"-1 0 0", "0 0 1", {0, -1, 0}}}};
-  std::vector<MechanismRow> rows;
-  for (const Softness softness : {Softness::defaults, Softness::stiffest}) {
-    const auto mjcf = [&](double h) {
-      std::ostringstream os;
-      os << "<mujoco model=\"A04\"><option integrator=\"RK4\" gravity=\"0 -9.81 0\"/><worldbody>";
-      for (std::size_t i = 0; i < rods.size(); ++i) {
-        const auto& d = rods[i].dir;
-        os << "<body name=\"rod" << i << "\" pos=\"" << rods[i].pos
-           << "\"><joint type=\"hinge\" axis=\"" << rods[i].axis << "\"/><inertial pos=\""
-           << vec(0.5 * l * d[0], 0.5 * l * d[1], 0.5 * l * d[2]) << "\" mass=\"" << m
-           << "\" diaginertia=\""
-           << vec(d[0] != 0 ? along : across, d[1] != 0 ? along : across,
-                  d[2] != 0 ? along : across)
-           << "\"/>";
-        if (i == 2) {
-          os << "<site name=\"track\" pos=\"0 0 1\"/>";  // P3, the middle rod's tip
-        }
-      }
-      os << "</body></body></body></body></body></worldbody><equality>";
-      // The hinge at P5 = (0, 0, 1) about x: P5 and P5 + x, in rod4's frame (at P4 = (0, 1, 1)).
-      for (const char* anchor : {"0 -1 0", "1 -1 0"}) {
-        os << "<connect body1=\"rod4\" body2=\"world\" anchor=\"" << anchor << "\""
-           << soft(softness, h) << "/>";
-      }
-      os << "</equality></mujoco>";
-      return os.str();
-    };
-    auto mine = rk4_sweep(label(softness), mjcf, times, doubling(4, 1024), timing,
-                          site_recorder(p3), [&] { return p3.measure(); });
-    rows.insert(rows.end(), mine.begin(), mine.end());
-  }
-  return rows;
-}
-
 std::vector<MechanismRow> mujoco_planar_rows(const std::string& id, const PlanarLinkage& m,
                                              const std::vector<double>& times,
                                              const PlanarMeasure& measure, const Timing& timing) {
@@ -467,59 +418,99 @@ std::vector<MechanismRow> mujoco_a05_rows(const FlyballGovernor& g,
   return rows;
 }
 
-std::vector<MechanismRow> mujoco_chain_rows(const SpatialLinkage& l,
-                                            const std::vector<double>& times, PointTrackError& tip,
-                                            const Timing& timing) {
-  const Eigen::Vector3d& g = l.gravity;
-  std::ostringstream os;
-  os.precision(17);
-  os << "<mujoco model=\"chain\"><option integrator=\"RK4\" gravity=\"" << vec(g.x(), g.y(), g.z())
-     << "\"/><worldbody>";
-  // Body i, then the bodies hinged to it, inside it (MJCF nests a tree); its position relative
-  // to its parent's centroid (the world's origin for the ground), both frames world-parallel.
-  const std::function<void(int)> body = [&](int i) {
-    const auto ui = static_cast<std::size_t>(i);
-    const SpatialLinkage::Body& b = l.bodies[ui];
-    const SpatialLinkage::Hinge& h = l.hinges[ui];
-    const Eigen::Vector3d from =
-        h.b < 0 ? Eigen::Vector3d::Zero() : l.bodies[static_cast<std::size_t>(h.b)].centroid;
-    const Eigen::Vector3d pos = b.centroid - from, at = h.at - b.centroid;
-    const Eigen::Matrix3d j = b.rotation * b.inertia * b.rotation.transpose();
-    os << "<body name=\"body" << i << "\" pos=\"" << vec(pos.x(), pos.y(), pos.z())
-       << "\"><joint type=\"hinge\" pos=\"" << vec(at.x(), at.y(), at.z()) << "\" axis=\""
-       << vec(h.axis.x(), h.axis.y(), h.axis.z()) << "\"/><inertial pos=\"0 0 0\" mass=\"" << b.mass
-       << "\" fullinertia=\"" << vec(j(0, 0), j(1, 1), j(2, 2)) << ' '
-       << vec(j(0, 1), j(0, 2), j(1, 2)) << "\"/>";
-    if (i == l.track_body) {
-      const Eigen::Vector3d p = b.rotation * l.track_point;
-      os << "<site name=\"track\" pos=\"" << vec(p.x(), p.y(), p.z()) << "\"/>";
+std::vector<MechanismRow> mujoco_spatial_rows(const SpatialLinkage& l,
+                                              const std::vector<double>& times,
+                                              PointTrackError& track, const Timing& timing) {
+  const std::size_t n = l.bodies.size();
+  if (l.hinges.size() < n) {
+    throw std::invalid_argument("MuJoCo's spatial linkage: a hinge per body at least");
+  }
+  for (std::size_t k = 0; k < l.hinges.size(); ++k) {
+    const SpatialLinkage::Hinge& h = l.hinges[k];
+    if (k < n ? h.a != int(k) || h.b >= int(k) : h.a < 0 || h.a >= int(n) || h.b >= int(n)) {
+      throw std::invalid_argument("MuJoCo's spatial linkage: hinge i < n must hold body i to a "
+                                  "parent < i, a further hinge two bodies of the linkage");
     }
-    for (std::size_t k = 0; k < l.hinges.size(); ++k) {
-      if (l.hinges[k].b == i) {
+  }
+  const bool loops = l.hinges.size() > n;
+  const Eigen::Vector3d& g = l.gravity;
+  const auto model = [&](const std::string& softness) {
+    std::ostringstream os;
+    os.precision(17);
+    os << "<mujoco model=\"spatial\"><option integrator=\"RK4\" gravity=\""
+       << vec(g.x(), g.y(), g.z()) << "\"/><worldbody>";
+    // Body i, then the bodies hinged to it, inside it (MJCF nests a tree); its position relative
+    // to its parent's centroid (the world's origin for the ground), both frames world-parallel.
+    const std::function<void(int)> body = [&](int i) {
+      const auto ui = static_cast<std::size_t>(i);
+      const SpatialLinkage::Body& b = l.bodies[ui];
+      const SpatialLinkage::Hinge& h = l.hinges[ui];
+      const Eigen::Vector3d from =
+          h.b < 0 ? Eigen::Vector3d::Zero() : l.bodies[static_cast<std::size_t>(h.b)].centroid;
+      const Eigen::Vector3d pos = b.centroid - from, at = h.at - b.centroid;
+      const Eigen::Matrix3d j = b.rotation * b.inertia * b.rotation.transpose();
+      os << "<body name=\"body" << i << "\" pos=\"" << vec(pos.x(), pos.y(), pos.z())
+         << "\"><joint type=\"hinge\" pos=\"" << vec(at.x(), at.y(), at.z()) << "\" axis=\""
+         << vec(h.axis.x(), h.axis.y(), h.axis.z()) << "\"/><inertial pos=\"0 0 0\" mass=\""
+         << b.mass << "\" fullinertia=\"" << vec(j(0, 0), j(1, 1), j(2, 2)) << ' '
+         << vec(j(0, 1), j(0, 2), j(1, 2)) << "\"/>";
+      if (i == l.track_body) {
+        const Eigen::Vector3d p = b.rotation * l.track_point;
+        os << "<site name=\"track\" pos=\"" << vec(p.x(), p.y(), p.z()) << "\"/>";
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        if (l.hinges[k].b == i) {
+          body(int(k));
+        }
+      }
+      os << "</body>";
+    };
+    for (std::size_t k = 0; k < n; ++k) {
+      if (l.hinges[k].b < 0) {
         body(int(k));
       }
     }
-    os << "</body>";
+    os << "</worldbody>";
+    if (loops) {
+      // A hinge that closes a loop holds two points of its axis together: its point and one 1 m
+      // along the axis, each a <connect> anchored in body a's frame (world-parallel, at its
+      // centroid); MuJoCo takes the other body's point from the starting configuration.
+      os << "<equality>";
+      for (std::size_t k = n; k < l.hinges.size(); ++k) {
+        const SpatialLinkage::Hinge& h = l.hinges[k];
+        const Eigen::Vector3d c = l.bodies[static_cast<std::size_t>(h.a)].centroid;
+        for (const Eigen::Vector3d& p :
+             {Eigen::Vector3d(h.at - c), Eigen::Vector3d(h.at - c + h.axis)}) {
+          os << "<connect body1=\"body" << h.a << "\" body2=\""
+             << (h.b < 0 ? std::string("world") : "body" + std::to_string(h.b)) << "\" anchor=\""
+             << vec(p.x(), p.y(), p.z()) << "\"" << softness << "/>";
+        }
+      }
+      os << "</equality>";
+    }
+    os << "<keyframe><key qvel=\"";
+    for (std::size_t k = 0; k < n; ++k) {
+      os << (k ? " " : "") << l.hinges[k].rate;
+    }
+    os << "\"/></keyframe></mujoco>";
+    return os.str();
   };
-  for (std::size_t k = 0; k < l.hinges.size(); ++k) {
-    if (l.hinges[k].a != int(k) || l.hinges[k].b >= int(k)) {
-      throw std::invalid_argument("MuJoCo's chain: hinge i must hold body i to a parent < i");
-    }
-    if (l.hinges[k].b < 0) {
-      body(int(k));
-    }
+  if (!loops) {
+    // To 512 steps per output (h = 9.8e-5 s on the chain), where RK4's error (7e-13 m when
+    // measured) nears the reference's own: a finer step would not be resolved.
+    const std::string mjcf = model("");
+    return rk4_sweep(
+        "MuJoCo RK4", [&](double) { return mjcf; }, times, doubling(1, 512), timing,
+        site_recorder(track), [&] { return track.measure(); });
   }
-  os << "</worldbody><keyframe><key qvel=\"";
-  for (std::size_t k = 0; k < l.hinges.size(); ++k) {
-    os << (k ? " " : "") << l.hinges[k].rate;
+  std::vector<MechanismRow> rows;
+  for (const Softness softness : {Softness::defaults, Softness::stiffest}) {
+    auto mine = rk4_sweep(
+        label(softness), [&](double h) { return model(soft(softness, h)); }, times,
+        doubling(4, 1024), timing, site_recorder(track), [&] { return track.measure(); });
+    rows.insert(rows.end(), mine.begin(), mine.end());
   }
-  os << "\"/></keyframe></mujoco>";
-  const std::string mjcf = os.str();
-  // To 512 steps per output (h = 9.8e-5 s), where RK4's error (7e-13 m when measured) nears the
-  // reference's own: a finer step would not be resolved.
-  return rk4_sweep(
-      "MuJoCo RK4", [&](double) { return mjcf; }, times, doubling(1, 512), timing,
-      site_recorder(tip), [&] { return tip.measure(); });
+  return rows;
 }
 
 }  // namespace tumble::bench
@@ -530,10 +521,6 @@ namespace tumble::bench {
 
 std::vector<MechanismRow> mujoco_a01_rows(const std::vector<double>& /*times*/,
                                           PointTrackError& /*bob*/, const Timing& /*timing*/) {
-  return {};
-}
-std::vector<MechanismRow> mujoco_a04_rows(const std::vector<double>& /*times*/,
-                                          PointTrackError& /*p3*/, const Timing& /*timing*/) {
   return {};
 }
 std::vector<MechanismRow> mujoco_planar_rows(const std::string& /*id*/, const PlanarLinkage& /*m*/,
@@ -547,9 +534,10 @@ std::vector<MechanismRow> mujoco_a05_rows(const FlyballGovernor& /*g*/,
                                           PointTrackError& /*slider*/, const Timing& /*timing*/) {
   return {};
 }
-std::vector<MechanismRow> mujoco_chain_rows(const SpatialLinkage& /*l*/,
-                                            const std::vector<double>& /*times*/,
-                                            PointTrackError& /*tip*/, const Timing& /*timing*/) {
+std::vector<MechanismRow> mujoco_spatial_rows(const SpatialLinkage& /*l*/,
+                                              const std::vector<double>& /*times*/,
+                                              PointTrackError& /*track*/,
+                                              const Timing& /*timing*/) {
   return {};
 }
 
