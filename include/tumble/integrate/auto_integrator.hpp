@@ -416,6 +416,13 @@ template <class SceneT, int N = Eigen::Dynamic> class AutoIntegrator {
       }
     };
     try {
+      if constexpr (SceneT::has_joints) {
+        // The redundant rows decided once, as the integrators do: left to each evaluation, the
+        // pivots of a mechanism with redundant rows (the N-four-bar: 35 rows of rank 29) can
+        // fall differently at the perturbed states than at s, and the difference quotients then
+        // measure that jump, not the Jacobian (h rho = 556 where it is 0.64).
+        detail::freeze_redundant_rows(*scene_, ws, s.y, bases);
+      }
       if (!f(s.y, f0)) {
         return false;
       }
