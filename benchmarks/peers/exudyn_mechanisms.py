@@ -87,6 +87,12 @@ def marker_with_frame(mbs, body, local, frame):
     return mbs.AddMarker(MarkerBodyRigid(bodyNumber=body, localPosition=list(local))), frame
 
 
+def joint_frames(fa, fb):
+    """A joint's rotationMarker arguments: none when the markers carry the frames
+    (marker_with_frame returned None), else the two frames."""
+    return {} if fa is None else {"rotationMarker0": fa, "rotationMarker1": fb}
+
+
 class Model:
     """An assembled Exudyn system, what the run records and how |C| is measured after it."""
 
@@ -173,8 +179,7 @@ def spatial(data):
         at, axis = np.asarray(h["at"], float), np.asarray(h["axis"], float)
         ma, fa, ba, la = marker(h["a"], at, axis)
         mb, fb, bb, lb = marker(h["b"], at, axis)
-        frames_given = {} if fa is None else {"rotationMarker0": fa, "rotationMarker1": fb}
-        mbs.AddObject(ObjectJointRevoluteZ(markerNumbers=[ma, mb], **frames_given))
+        mbs.AddObject(ObjectJointRevoluteZ(markerNumbers=[ma, mb], **joint_frames(fa, fb)))
         m.pairs.append((ba, la, bb, lb))
     track = data["track"]
     m.sensor = mbs.AddSensor(SensorBody(bodyNumber=bodies[track["body"]],
@@ -218,16 +223,12 @@ def flyball(data):
     # The shaft turns about z at its bottom end, the origin.
     ma, fa = marker_with_frame(mbs, m.ground, [0, 0, 0], frame_with_z(z))
     mb, fb = marker_with_frame(mbs, shaft, [0, 0, -half], frame_with_z(z))
-    mbs.AddObject(ObjectJointRevoluteZ(
-        markerNumbers=[ma, mb], **({} if fa is None else {"rotationMarker0": fa,
-                                                          "rotationMarker1": fb})))
+    mbs.AddObject(ObjectJointRevoluteZ(markerNumbers=[ma, mb], **joint_frames(fa, fb)))
     m.pairs.append((None, [0, 0, 0], shaft, [0, 0, -half]))
     # The slider slides along the shaft's axis and turns with it.
     ma, fa = marker_with_frame(mbs, shaft, [0, 0, data["s0"] - half], frame_with_x(z))
     mb, fb = marker_with_frame(mbs, slider, [0, 0, 0], frame_with_x(z))
-    mbs.AddObject(ObjectJointPrismaticX(
-        markerNumbers=[ma, mb], **({} if fa is None else {"rotationMarker0": fa,
-                                                          "rotationMarker1": fb})))
+    mbs.AddObject(ObjectJointPrismaticX(markerNumbers=[ma, mb], **joint_frames(fa, fb)))
     alpha, c = data["alpha"], data["rod_centroid"]
     for side in (1.0, -1.0):
         hinge = np.array([side * data["offset"], 0, data["top"]])
@@ -240,9 +241,7 @@ def flyball(data):
         on_shaft = hinge - np.array([0, 0, half])
         ma, fa = marker_with_frame(mbs, rod, [-c, 0, 0], frame_with_z(y))
         mb, fb = marker_with_frame(mbs, shaft, on_shaft, frame_with_z(y))
-        mbs.AddObject(ObjectJointRevoluteZ(
-            markerNumbers=[ma, mb], **({} if fa is None else {"rotationMarker0": fa,
-                                                              "rotationMarker1": fb})))
+        mbs.AddObject(ObjectJointRevoluteZ(markerNumbers=[ma, mb], **joint_frames(fa, fb)))
         m.pairs.append((rod, [-c, 0, 0], shaft, list(on_shaft)))
         mid = mbs.AddMarker(MarkerBodyPosition(
             bodyNumber=rod, localPosition=[0.5 * data["rod_length"] - c, 0, 0]))
