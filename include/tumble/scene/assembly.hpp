@@ -180,22 +180,35 @@ int freeze_redundant_rows(const SceneT& scene, SceneWorkspace<SceneT>& ws, const
 }
 
 /// After project_constraints: true when its result shows that the rows retained as independent
-/// (those not frozen as redundant, freeze_redundant_rows) no longer determine the motion, so
-/// that the rows must be decided again at this position. Newton on them did not converge in
-/// kJointProjectionIterations, or the velocities they leave violate some row (the frozen ones
-/// included) by more than kRetainedRowsVelocity relative to the largest body velocity: a solve
-/// on independent rows meets every row to rounding. Bricard's mechanism (A04) meets positions
-/// where the row frozen at the start stops being the redundant one; there the velocity residual
-/// after the projection grew from 1e-15 to 7e-3 within a few steps and the steps stalled
-/// (docs/benchmarks/mechanisms.md, 2026-11-27).
+/// (those not frozen as redundant, freeze_redundant_rows) no longer determine the motion well,
+/// so that the rows must be decided again at this position:
+/// - they are near dependent: the smallest pivot of their factorization at the projected
+///   position is below kRetainedPivotRatio of the largest (joints.hpp, pivot_ratio). Bricard's
+///   mechanism (A04, 30 rows of rank 29) has no position where all 30 are independent, but which
+///   row is the redundant one changes along the motion. With the row frozen at t = 0 the
+///   retained rows' ratio stays between 8e-4 and 1e-2 over the first 2 s; with the row frozen at
+///   t = 0.15 s (where the front door handed over) it falls through 1e-7 at t = 0.890 s to
+///   1.2e-10 at 0.894 s (the rank test counts 1e-10 as zero), and Dormand-Prince's steps stalled
+///   there (561 of 1000 attempts rejected). Decided again at such a position, the rows are
+///   those an unfrozen factorization finds dependent there. The motion does not depend on the
+///   choice (the retained rows span the same rows either way), so a new choice changes the
+///   right-hand side only by rounding;
+/// - or Newton on them did not converge in kJointProjectionIterations, or the velocities they
+///   leave violate some row (the frozen ones included) by more than kRetainedRowsVelocity
+///   relative to the largest body velocity: a solve on independent rows meets every row to
+///   rounding. (Where the retained rows became dependent between two checks, the velocity
+///   residual after the projection grew from 1e-15 to 7e-3 within a few steps,
+///   docs/benchmarks/mechanisms.md, 2026-11-27.)
 inline constexpr double kRetainedRowsVelocity = 1e-8;
+inline constexpr double kRetainedPivotRatio = 1e-6;
 inline bool retained_rows_failed(const JointScratch& j, const ConstraintResidual& r,
                                  int iterations) {
   if (j.dependent.empty()) {  // nothing frozen: the rows are found by each factorization
     return false;
   }
   const double scale = j.nu.size() > 0 ? std::max(1.0, j.nu.cwiseAbs().maxCoeff()) : 1.0;
-  return iterations >= kJointProjectionIterations || r.velocity > kRetainedRowsVelocity * scale;
+  return iterations >= kJointProjectionIterations || r.velocity > kRetainedRowsVelocity * scale ||
+         pivot_ratio(j) < kRetainedPivotRatio;
 }
 
 /// The projection of the file comment, in place, for the bodies `mobile(id)` allows to move:

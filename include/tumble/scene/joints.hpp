@@ -97,6 +97,20 @@ inline double dense_rank_threshold(const JointScratch& j) {
   return kRankTolerance * (d.size() > 0 ? d.cwiseAbs().maxCoeff() : 0.0);
 }
 
+/// The smallest pivot of the last joint_schur over its largest: how near the rows it factored are
+/// to dependent (the matrix is Jacobi-scaled, and the frozen rows factor with unit pivots; a
+/// pivot the rank test took for zero counts as zero). 1 for no rows, 0 for all pivots zero.
+inline double pivot_ratio(const JointScratch& j) {
+  const auto ratio = [](const auto& d) {
+    if (d.size() == 0) {
+      return 1.0;
+    }
+    const double largest = d.cwiseAbs().maxCoeff();
+    return largest > 0.0 ? d.cwiseAbs().minCoeff() / largest : 0.0;
+  };
+  return j.bandwidth >= 0 ? ratio(j.pivots) : ratio(j.ldlt.vectorD());
+}
+
 /// The rows frozen as dependent (JointScratch::dependent). Their identity rows factor with unit
 /// pivots, which the rank counts do not count.
 inline int frozen_rows(const JointScratch& j) {
