@@ -24,7 +24,7 @@
 //    5(4), which reads the outputs off its dense output. Dormand-Prince then runs the outputs
 //    in chunks (kDenseCheckOutputs, then twice as many each time), and hands the rest back to
 //    Fehlberg 7(8) when, after a chunk, it has cost more right-hand sides per unit time since
-//    it took over than Fehlberg's cheapest: one step of kFehlbergStages per output. The first steps
+//    it took over than Fehlberg's cheapest: one step (kFehlbergStages) per output. The first steps
 //    say little of a motion that speeds up: Bricard's mechanism (A04), released at rest, lets
 //    Fehlberg take 0.2 s steps at first (4 outputs), but its steps over the 10 s average 0.038 s
 //    at 1e-8, where Dormand-Prince needs 2.6 times its steps.
@@ -146,9 +146,10 @@ template <class SceneT, int N = Eigen::Dynamic> class AutoIntegrator {
   static constexpr long kDenseDecisionSteps = 3;
   /// Dormand-Prince's first chunk of outputs, judged before it goes on (point 2).
   static constexpr std::size_t kDenseCheckOutputs = 8;
-  /// Right-hand sides per step: Fehlberg 7(8)'s 13 stages (Odeint's runge_kutta_fehlberg78, not
-  /// first same as last).
-  static constexpr double kFehlbergStages = 13.0;
+  /// Right-hand sides per step of Fehlberg 7(8): its stages, 13 (Odeint's runge_kutta_fehlberg78,
+  /// not first same as last).
+  static constexpr double kFehlbergStages = static_cast<double>(
+      detail::odeint::runge_kutta_fehlberg78<detail::OdeintState<N>>::stage_count);
   /// Tolerances below this keep Fehlberg 7(8) whatever the outputs: Dormand-Prince's order 5
   /// then needs several times its steps.
   static constexpr double kDenseOutputsTightest = 1e-9;
@@ -404,6 +405,7 @@ template <class SceneT, int N = Eigen::Dynamic> class AutoIntegrator {
   /// shorter than the spacing it costs more than that; but where Dormand-Prince's steps are
   /// that short, Fehlberg's order 8 takes fewer right-hand sides for the accuracy: A04 at 1e-8,
   /// 3566 against 5223.) Returns with the outputs left for the method running then.
+  /// `done` counts the outputs handed to the observer; `observe` advances it.
   template <class Observe>
   void dense_chunks(const std::vector<double>& ts, const std::size_t& done, double spacing,
                     Observe& observe) {
