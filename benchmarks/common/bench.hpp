@@ -310,9 +310,10 @@ Run run_rk4(const Problem& p, const MethodSetting& c, const Timing& timing);
 Run run_floor_cvode(const Problem& p, const MethodSetting& c, const Timing& timing);
 /// ARKODE ERKStep with the Fehlberg 7(8) table:
 Run run_floor_arkode_f78(const Problem& p, const MethodSetting& c, const Timing& timing);
-/// Boost.Odeint, std::array state: controlled runge_kutta_fehlberg78, and runge_kutta_dopri5
-/// with dense output:
+/// Boost.Odeint, std::array state: controlled runge_kutta_fehlberg78 in integrate_times and
+/// in a plain loop over try_step, and runge_kutta_dopri5 with dense output:
 Run run_floor_odeint_rkf78(const Problem& p, const MethodSetting& c, const Timing& timing);
+Run run_floor_odeint_rkf78_loop(const Problem& p, const MethodSetting& c, const Timing& timing);
 Run run_floor_odeint_dopri5(const Problem& p, const MethodSetting& c, const Timing& timing);
 
 /// Pinocchio's aba in the same CVODE setup (peers/pinocchio_work_precision.cpp).

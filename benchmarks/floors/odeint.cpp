@@ -1,16 +1,26 @@
 // tumble_bench: integrator floors with Boost.Odeint on the hand-written first-order right-hand
 // side (floors/rhs.hpp), the state a fixed-size std::array<double, N> (no heap):
-//  - runge_kutta_fehlberg78 under Odeint's controller (make_controlled(atol, rtol)) in Odeint's
-//    integrate_times: the steps end on the output times. (Also written as a plain loop over the
-//    controller's try_step keeping x' across a rejected attempt, as tumble's integrator does: it
-//    was slower on 3 of the 4 comparisons of docs/benchmarks/floors.md, 2026-11-26, and is not
-//    kept.)
+//  - runge_kutta_fehlberg78 under Odeint's controller (make_controlled(atol, rtol)), written two
+//    ways, both in the main job, the faster of the two being the floor:
+//    - in Odeint's integrate_times: the steps end on the output times;
+//    - as a plain loop over the controller's try_step, keeping x' across a rejected attempt (as
+//      tumble's integrator does; integrate_times evaluates it again), each output time reached
+//      by shortening the step to it and the step size restored after (as integrate_times does).
 //  - runge_kutta_dopri5 with dense output (make_dense_output(atol, rtol)): free steps, the output
 //    times interpolated.
 // rtol = atol = tol, as for the CVODE methods. The first step is estimated (Hairer, Norsett and
 // Wanner, Solving ODEs I, Sec. II.4, as tumble's OdeintIntegrator does), not a fixed fraction of
 // the first output interval. |p| is normalized at output only. The right-hand side is inlined
 // into Odeint's stepper, as tumble's is into its own.
+//
+// One kind per translation unit (TUMBLE_BENCH_ODEINT_FLOOR, set by main/tumble_bench.cmake in the
+// units it generates from this file): with all in one unit, GCC 12 -O3 reached its whole-unit
+// limit on inlining and left the 13-state floor's right-hand side out of its stepper. tumble's
+// nine configurations stay in one unit (work_precision/tumble_d.cpp says why).
+
+#ifndef TUMBLE_BENCH_ODEINT_FLOOR
+#error "compiled through the units main/tumble_bench.cmake generates (TUMBLE_BENCH_ODEINT_FLOOR)"
+#endif
 
 #include <algorithm>
 #include <array>
@@ -34,7 +44,7 @@ namespace {
 
 namespace odeint = boost::numeric::odeint;
 
-enum class OdeintKind { rkf78, dopri5 };
+enum class OdeintKind { rkf78, rkf78_loop, dopri5 };
 
 /// Odeint stops after this many steps between two output times (its default, 500, is too few
 /// for the fast spinner at tight tolerances).
@@ -97,21 +107,51 @@ Run odeint_floor(const Problem& p, const MethodSetting& c, const Timing& timing)
       };
       State dxdt{};
       counted(x, dxdt, 0.0);
-      const double order = Kind == OdeintKind::rkf78 ? 7 : 5;
+      const double order = Kind == OdeintKind::dopri5 ? 5 : 7;
       const auto counted_eval = [&f](const State& y, State& yd) { f(y.data(), yd.data()); };
       const double dt0 =
           std::min(initial_step<N>(counted_eval, x, dxdt, c.tol, order), p.times.front());
-      const odeint::max_step_checker checker(kMaxSteps);
       std::size_t steps = 0;
       if constexpr (Kind == OdeintKind::rkf78) {
         auto stepper =
             odeint::make_controlled(c.tol, c.tol, odeint::runge_kutta_fehlberg78<State>());
         steps = odeint::integrate_times(stepper, counted, x, grid.begin(), grid.end(), dt0, observe,
-                                        checker);
+                                        odeint::max_step_checker(kMaxSteps));
+      } else if constexpr (Kind == OdeintKind::rkf78_loop) {
+        auto stepper =
+            odeint::make_controlled(c.tol, c.tol, odeint::runge_kutta_fehlberg78<State>());
+        observe(x, 0.0);
+        State trial{};
+        double t = 0, dt = dt0;
+        long failed = 0;
+        for (std::size_t i = 1; i < grid.size(); ++i) {
+          const double t_out = grid[i];
+          for (long n = 0; t < t_out; ++n) {
+            if (n == kMaxSteps) {  // as Odeint's max_step_checker in integrate_times
+              throw std::runtime_error("the Fehlberg 7(8) floor: too many steps to an output");
+            }
+            const bool last = dt >= t_out - t;  // the step ends on the output time
+            double t_try = t, h = last ? t_out - t : dt;
+            if (stepper.try_step(counted, x, dxdt, t_try, trial, h) == odeint::success) {
+              ++steps;
+              failed = 0;
+              x = trial;
+              t = last ? t_out : t_try;
+              counted(x, dxdt, t);
+              dt = std::max(dt, h);  // h: the controller's next step (integrate_times' rule)
+            } else {
+              if (++failed > 500) {  // Odeint's failed_step_checker: 500 in a row
+                throw std::runtime_error("the Fehlberg 7(8) floor: 500 failed steps in a row");
+              }
+              dt = h;
+            }
+          }
+          observe(x, t);
+        }
       } else {
         auto stepper = odeint::make_dense_output(c.tol, c.tol, odeint::runge_kutta_dopri5<State>());
         steps = odeint::integrate_times(stepper, counted, x, grid.begin(), grid.end(), dt0, observe,
-                                        checker);
+                                        odeint::max_step_checker(kMaxSteps));
       }
       run.steps = static_cast<long>(steps);
       run.rhs_evals = f.evals;
@@ -134,12 +174,20 @@ Run dispatch(const Problem& p, const MethodSetting& c, const Timing& timing) {
 
 }  // namespace
 
+#if TUMBLE_BENCH_ODEINT_FLOOR == 0
 Run run_floor_odeint_rkf78(const Problem& p, const MethodSetting& c, const Timing& timing) {
   return dispatch<OdeintKind::rkf78>(p, c, timing);
 }
-
+#elif TUMBLE_BENCH_ODEINT_FLOOR == 1
+Run run_floor_odeint_rkf78_loop(const Problem& p, const MethodSetting& c, const Timing& timing) {
+  return dispatch<OdeintKind::rkf78_loop>(p, c, timing);
+}
+#elif TUMBLE_BENCH_ODEINT_FLOOR == 2
 Run run_floor_odeint_dopri5(const Problem& p, const MethodSetting& c, const Timing& timing) {
   return dispatch<OdeintKind::dopri5>(p, c, timing);
 }
+#else
+#error "TUMBLE_BENCH_ODEINT_FLOOR: 0 (Fehlberg 7(8)), 1 (the same as a loop) or 2 (Dormand-Prince)"
+#endif
 
 }  // namespace tumble::bench

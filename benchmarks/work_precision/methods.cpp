@@ -43,6 +43,10 @@ std::vector<Method> all_methods() {
                   .family = "floor",
                   .schemes = {Scheme::rkf78},
                   .run = &run_floor_odeint_rkf78});
+  list.push_back({.label = "floor Odeint RKF78 loop [p; w]",
+                  .family = "floor",
+                  .schemes = {Scheme::rkf78},
+                  .run = &run_floor_odeint_rkf78_loop});
   list.push_back({.label = "floor Odeint DP5 [p; w]",
                   .family = "floor",
                   .schemes = {Scheme::dopri5},

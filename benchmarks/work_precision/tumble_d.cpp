@@ -5,6 +5,15 @@
 // (StateForm::quasi_velocities) and [q; qdot] (StateForm::generalized), for Euler parameters and
 // modified Rodrigues parameters. What a run does between steps (projection of p, chart
 // switches, output times reached by stepping to them) is the integrator's; nothing is tuned here.
+//
+// The nine configurations share this one translation unit, which takes GCC 12 -O3 past its
+// whole-unit inlining limit (`--param inline-unit-growth`: -fopt-info-inline-missed names it
+// 1,788 times, Odeint's stage sums and controller among them). One unit per configuration
+// (2026-12-02, nineteenth session) took 840 CPU s to compile against 165 and moved the headline
+// configuration's times by nothing measurable (tumbling body and spinner, 1e-6 to 1e-12, best
+// of 90 interleaved runs: within 5 %, both ways); its instruction count rose by 3 %. So the
+// limit leaves tumble's ratio to its floor, if anything, conservative; the floors, whose units
+// are cheap, get one unit per kind (floors/odeint.cpp).
 
 #include <exception>
 #include <string>
