@@ -43,7 +43,7 @@ std::vector<Method> all_methods() {
                   .family = "floor",
                   .schemes = {Scheme::rkf78},
                   .run = &run_floor_odeint_rkf78});
-  list.push_back({.label = "floor Odeint RKF78 loop [p; w]",
+  list.push_back({.label = "floor Odeint RKF78 loop",
                   .family = "floor",
                   .schemes = {Scheme::rkf78},
                   .run = &run_floor_odeint_rkf78_loop});
