@@ -49,6 +49,9 @@ enum class OdeintKind { rkf78, rkf78_loop, dopri5 };
 /// Odeint stops after this many steps between two output times (its default, 500, is too few
 /// for the fast spinner at tight tolerances).
 constexpr long kMaxSteps = 100'000'000;
+/// The loop floor stops after this many rejected attempts in a row (Odeint's failed_step_checker
+/// in integrate_times: 500).
+constexpr long kMaxFailedSteps = 500;
 
 /// The first step for a method of order `order` at x with x' = f0 (Hairer, Norsett and Wanner,
 /// Sec. II.4: an Euler step of size h0, then the second derivative from it), with one more
@@ -140,8 +143,8 @@ Run odeint_floor(const Problem& p, const MethodSetting& c, const Timing& timing)
               counted(x, dxdt, t);
               dt = std::max(dt, h);  // h: the controller's next step (integrate_times' rule)
             } else {
-              if (++failed > 500) {  // Odeint's failed_step_checker: 500 in a row
-                throw std::runtime_error("the Fehlberg 7(8) floor: 500 failed steps in a row");
+              if (++failed > kMaxFailedSteps) {
+                throw std::runtime_error("the Fehlberg 7(8) floor: too many failed steps in a row");
               }
               dt = h;
             }

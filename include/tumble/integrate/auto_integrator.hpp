@@ -414,15 +414,15 @@ template <class SceneT, int N = Eigen::Dynamic> class AutoIntegrator {
     const long rhs0 = explicit_->statistics().rhs_evals;
     for (std::size_t chunk = kDenseCheckOutputs; ts.size() - done > chunk; chunk *= 2) {
       explicit_->integrate(std::span<const double>(ts).subspan(done, chunk), observe);
-      const double span = time() - t0;
+      const double elapsed = time() - t0;
       const auto rhs = static_cast<double>(explicit_->statistics().rhs_evals - rhs0);
-      if (span > 0.0 && rhs > fehlberg * span) {
+      if (elapsed > 0.0 && rhs > fehlberg * elapsed) {
         char buf[240];
         std::snprintf(buf, sizeof buf,
                       "Dormand-Prince took %.3g right-hand sides per unit time since it took "
                       "over, Fehlberg 7(8) at most %.3g (one step per output): Fehlberg 7(8) "
                       "from here",
-                      rhs / span, fehlberg);
+                      rhs / elapsed, fehlberg);
         hand_over(AutoMethod::fehlberg78, buf);
         return;
       }
