@@ -44,9 +44,10 @@ void scene_kinematics(const SceneT& scene, SceneWorkspace<SceneT>& ws, const Y& 
   scene.for_each_entry([&](const auto& e) {
     using Body = std::remove_cvref_t<decltype(e.body)>;
     using E = std::remove_cvref_t<decltype(e)>;
+    auto& k = ws.kinematics(e);
     body_kinematics<E::form>(e.body, y.template segment<Body::nq>(e.offset),
                              y.template segment<E::rate_size>(e.rates), base[e.id],
-                             e.needs_rotation, ws.kinematics(e));
+                             e.needs_rotation, k, &k.theta_functions);
     ws.wrench(e.id) = Wrench<double>{};
   });
 }
@@ -71,10 +72,12 @@ void scene_loads([[maybe_unused]] const SceneT& scene, [[maybe_unused]] SceneWor
 }
 
 /// Pass 3 for one body: the rate of its block of y for its kinematics k and wrench w (checked for
-/// finiteness when Checked).
-template <bool Checked, class E, class Y, class K, class Ydot>
+/// finiteness when Checked); in [q; qdot], with the functions of theta that body_kinematics kept
+/// in `theta_functions`.
+template <bool Checked, class E, class Y, class K, class Pre, class Ydot>
 [[gnu::always_inline]] inline void entry_rates(const E& e, const Y& y, const K& k,
                                                const Wrench<double>& w, bool stabilize,
+                                               [[maybe_unused]] const Pre& theta_functions,
                                                Ydot& ydot) {
   using Body = std::remove_cvref_t<decltype(e.body)>;
   constexpr int nq = Body::nq;
@@ -86,7 +89,7 @@ template <bool Checked, class E, class Y, class K, class Ydot>
     const typename Body::Coords qd = y.template segment<nq>(e.rates);
     ydot.template segment<nq>(e.offset) = qd;
     body_accelerations_into<Checked>(e.body, q, qd, k, w, stabilize,
-                                     ydot.template segment<nq>(e.rates));
+                                     ydot.template segment<nq>(e.rates), &theta_functions);
   }
 }
 
@@ -100,10 +103,12 @@ template <bool Checked, class SceneT, class Y, class Ydot>
     using E = std::remove_cvref_t<decltype(e)>;
     using Body = std::remove_cvref_t<decltype(e.body)>;
     typename Body::Kinematics k;
+    detail::ThetaFunctions<Body, E::form> theta_functions;
     body_kinematics<E::form>(e.body, y.template segment<Body::nq>(e.offset),
                              y.template segment<E::rate_size>(e.rates), base[e.id],
-                             Body::reference == ReferencePoint::offset, k);
-    entry_rates<Checked>(e, y, k, Wrench<double>{}, ws.stabilize_constraints, ydot);
+                             Body::reference == ReferencePoint::offset, k, &theta_functions);
+    entry_rates<Checked>(e, y, k, Wrench<double>{}, ws.stabilize_constraints, theta_functions,
+                         ydot);
   });
 }
 
@@ -124,10 +129,12 @@ void rhs(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y& y,
       using E = std::remove_cvref_t<decltype(e)>;
       using Body = std::remove_cvref_t<decltype(e.body)>;
       typename Body::Kinematics k;
-      detail::body_kinematics<E::form>(e.body, y.template segment<Body::nq>(e.offset),
-                                       y.template segment<E::rate_size>(e.rates), base[e.id],
-                                       Body::reference == ReferencePoint::offset, k);
-      detail::entry_rates<checked>(e, y, k, Wrench<double>{}, ws.stabilize_constraints, ydot);
+      detail::ThetaFunctions<Body, E::form> theta_functions;
+      detail::body_kinematics<E::form>(
+          e.body, y.template segment<Body::nq>(e.offset), y.template segment<E::rate_size>(e.rates),
+          base[e.id], Body::reference == ReferencePoint::offset, k, &theta_functions);
+      detail::entry_rates<checked>(e, y, k, Wrench<double>{}, ws.stabilize_constraints,
+                                   theta_functions, ydot);
     });
   } else {
     if constexpr (!SceneT::has_joints) {
@@ -145,8 +152,9 @@ void rhs(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y& y,
       detail::constraint_forces(scene, ws);  // the joints' reactions join the loads' wrenches
     }
     scene.for_each_entry([&](const auto& e) {
-      detail::entry_rates<checked>(e, y, ws.kinematics(e), ws.wrench(e.id),
-                                   ws.stabilize_constraints, ydot);
+      const auto& k = ws.kinematics(e);
+      detail::entry_rates<checked>(e, y, k, ws.wrench(e.id), ws.stabilize_constraints,
+                                   k.theta_functions, ydot);
     });
   }
 }

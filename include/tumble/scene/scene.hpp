@@ -76,6 +76,23 @@ struct Event {
 };
 
 namespace detail {
+
+/// The functions of theta that a body's rates in the state form Form use again (rhs.hpp): in
+/// [q; qdot] those omega used (P::Precomputed), which thetaddot (Eq. 1.10) reads instead of
+/// evaluating them twice; in [q; v; omega], where no thetaddot is formed, none.
+struct NoThetaFunctions {};
+template <class Body, StateForm Form>
+using ThetaFunctions =
+    std::conditional_t<Form == StateForm::generalized,
+                       typename Body::Param::template Precomputed<double>, NoThetaFunctions>;
+
+/// A body's kinematics as the right-hand side keeps them between its passes: what its loads read,
+/// and the functions of theta its rates use again.
+template <class Body, StateForm Form>
+struct EntryKinematics : BodyKinematics<double, Body::reference> {
+  [[no_unique_address]] ThetaFunctions<Body, Form> theta_functions;
+};
+
 template <class T, class... Ts> constexpr std::size_t index_of() {
   constexpr bool found[] = {std::is_same_v<T, Ts>...};
   for (std::size_t i = 0; i < sizeof...(Ts); ++i) {
@@ -185,9 +202,10 @@ class Scene<Bodies<B...>, Loads<L...>, Form, Joints<J...>> {
   using LoadTypes = std::tuple<L...>;
   using JointTypes = std::tuple<J...>;
   template <class Joint> using AttachedJoint = detail::AttachedJoint<Joint>;
-  /// Per body type, the kinematics its loads read (the layout of a workspace), in cache lines of
-  /// their own (written at every evaluation, by one thread: core/cache_line.hpp).
-  using KinematicsStorage = std::tuple<CacheLineVector<BodyKinematics<double, B::reference>>...>;
+  /// Per body type, the kinematics its loads read and, in [q; qdot], the functions of theta the
+  /// accelerations use again (detail::EntryKinematics: the layout of a workspace), in cache lines
+  /// of their own (written at every evaluation, by one thread: core/cache_line.hpp).
+  using KinematicsStorage = std::tuple<CacheLineVector<detail::EntryKinematics<B, Form>>...>;
   /// The index of a body type in Bodies<B...> (its group).
   template <class Body> static constexpr std::size_t group_of = detail::index_of<Body, B...>();
 

@@ -5,6 +5,8 @@
 // constraint stabilization of Euler parameters, for either state form (state.hpp).
 
 #include <cmath>
+#include <cstddef>
+#include <type_traits>
 
 #include "tumble/body/kinematics.hpp"
 #include "tumble/body/rigid_body.hpp"
@@ -23,10 +25,14 @@ namespace tumble::detail {
 /// has q = theta and qd = thetadot or omega: r_oc is its fixed point and rdot_oc = 0. Forced
 /// inline: GCC 12 left it out of line in the right-hand side, which cost 35% of an offset
 /// Euler-parameter right-hand side (150 -> 202 ns; 151 ns inlined).
-template <StateForm Form, class Body, class Q, class Qd, class S>
+/// `theta_functions`: where to keep, in the [q; qdot] form, the functions of theta that omega
+/// used (P::Precomputed: the trigonometric functions of Euler angles, the series of the rotation
+/// vector), for body_accelerations_into to use again; nullptr (the default) keeps nothing.
+template <StateForm Form, class Body, class Q, class Qd, class S, class Pre = std::nullptr_t>
 [[gnu::always_inline]] inline void body_kinematics(const Body& body, const Q& q, const Qd& qd,
                                                    const Matrix3<double>& base, bool with_rotation,
-                                                   BodyKinematics<S, Body::reference>& k) {
+                                                   BodyKinematics<S, Body::reference>& k,
+                                                   [[maybe_unused]] Pre theta_functions = nullptr) {
   using P = typename Body::Param;
   const typename P::template Coords<S> th = q.template tail<Body::n_theta>();
   k.mass_properties = &body.mass_properties();
@@ -50,6 +56,9 @@ template <StateForm Form, class Body, class Q, class Qd, class S>
     if (with_rotation) {
       k.rotation = P::rotation(pre);
     }
+    if constexpr (!std::is_null_pointer_v<Pre>) {
+      *theta_functions = pre;
+    }
   }
   if (with_rotation) {
     if constexpr (Chart<P>::has_singularity) {  // Euler parameters never leave their chart
@@ -69,12 +78,13 @@ template <StateForm Form, class Body, class Q, class Qd, class S>
 /// (RigidBody::velocity_rates_into). Checked: a non-finite result throws NonFiniteError, naming
 /// its cause, through RigidBody::accelerations (the same values, computed again on that cold
 /// path); else unchecked, for a caller that checks the results itself (rhs.hpp,
-/// FiniteCheck::by_caller).
-template <bool Checked = true, class JBody, class Qdd>
+/// FiniteCheck::by_caller). `theta_functions`: those body_kinematics kept at this q (thetaddot
+/// then evaluates no function of theta again), or nullptr (the default: evaluated here).
+template <bool Checked = true, class JBody, class Qdd, class Pre = std::nullptr_t>
 [[gnu::always_inline]] inline void body_accelerations_into(
     const JBody& body, const typename JBody::Coords& q, const typename JBody::Coords& qd,
     const typename JBody::Kinematics& k, const Wrench<typename JBody::Scalar>& w,
-    [[maybe_unused]] bool stabilize, Qdd&& qdd) {
+    [[maybe_unused]] bool stabilize, Qdd&& qdd, [[maybe_unused]] Pre theta_functions = nullptr) {
   using S = typename JBody::Scalar;
   using Theta = typename JBody::Theta;
   const Theta th = q.template tail<JBody::n_theta>();
@@ -85,8 +95,13 @@ template <bool Checked = true, class JBody, class Qdd>
   } else {
     body.velocity_rates_into(k, w, qdd.template head<3>(), alpha);
   }
-  qdd.template tail<JBody::n_theta>() =
-      JBody::Param::thetaddot(th, Theta(qd.template tail<JBody::n_theta>()), alpha);
+  if constexpr (std::is_null_pointer_v<Pre>) {
+    qdd.template tail<JBody::n_theta>() =
+        JBody::Param::thetaddot(th, Theta(qd.template tail<JBody::n_theta>()), alpha);
+  } else {
+    qdd.template tail<JBody::n_theta>() =
+        JBody::Param::thetaddot(*theta_functions, Theta(qd.template tail<JBody::n_theta>()), alpha);
+  }
   if constexpr (Checked) {
     if (!detail::all_finite_fast(qdd)) [[unlikely]] {
       qdd = body.accelerations(q, qd, k, w);  // the same values: throws, naming the cause
