@@ -8,6 +8,7 @@
 #include <cmath>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
@@ -188,6 +189,9 @@ TEST_CASE("mechanism: bad input is refused with the joint named", "[joint]") {
     CHECK_THROWS_WITH(loop.scene.add_joint(BodyId<Link>{7, 7}, ground,
                                            Revolute(Vector3d::Zero(), y, Vector3d::Zero(), y)),
                       TUMBLE_CONTAINS("does not refer to a body of this scene"));
+    CHECK_THROWS_WITH(
+        std::as_const(loop.scene).joint(JointId<Revolute>{7, 7}),
+        TUMBLE_CONTAINS("the joint handle 7 does not refer to a joint of this scene"));
     SceneIntegratorOptions opt;
     opt.method = CvodeMethod::adams;
     CHECK_THROWS_WITH(SceneIntegrator<FourBar>(loop.scene, 0.0, opt),

@@ -95,12 +95,11 @@ template <bool Checked = true, class JBody, class Qdd, class Pre = std::nullptr_
   } else {
     body.velocity_rates_into(k, w, qdd.template head<3>(), alpha);
   }
-  if constexpr (std::is_null_pointer_v<Pre>) {
-    qdd.template tail<JBody::n_theta>() =
-        JBody::Param::thetaddot(th, Theta(qd.template tail<JBody::n_theta>()), alpha);
+  const Theta thd = qd.template tail<JBody::n_theta>();
+  if constexpr (std::is_null_pointer_v<Pre>) {  // Eq. (1.10) solved for thetaddot
+    qdd.template tail<JBody::n_theta>() = JBody::Param::thetaddot(th, thd, alpha);
   } else {
-    qdd.template tail<JBody::n_theta>() =
-        JBody::Param::thetaddot(*theta_functions, Theta(qd.template tail<JBody::n_theta>()), alpha);
+    qdd.template tail<JBody::n_theta>() = JBody::Param::thetaddot(*theta_functions, thd, alpha);
   }
   if constexpr (Checked) {
     if (!detail::all_finite_fast(qdd)) [[unlikely]] {
