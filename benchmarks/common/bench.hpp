@@ -210,6 +210,11 @@ struct Timing {
   /// After the first run, skip further repetitions when it took longer than this (s): the run
   /// time is then far above the timer's resolution and the noise it would average out.
   double slow_run = 1.0;
+  /// Fast runs: past `reps`, repeat while the runs so far add up to less than this (s), up to
+  /// max_reps. The best of 3 runs of 50 us is mostly the noise of those 150 us: a preempted
+  /// run, a cold cache, a frequency change. 0: exactly `reps`.
+  double min_total = 0.0;
+  int max_reps = 200;
 };
 
 /// Records one timed repetition, measured by `watch`, into `run` (the best on each clock, and

@@ -61,6 +61,11 @@ std::optional<Options> parse_options(int argc, char** argv);
 /// The tolerances rtol = atol of the CVODE methods, unless --tolerances says otherwise.
 extern const std::vector<double> kTolerances;
 
+/// How the sweep times a setting: the best of --reps runs, and of more when they are fast, until
+/// the runs add up to min_total (a setting of 50 us is timed 200 times, one of 2 ms 5 times); a
+/// single run once one takes longer than slow_run.
+Timing sweep_timing(const Options& o);
+
 /// One measurement to make: a method on a problem at one setting.
 struct Job {
   const Problem* problem = nullptr;

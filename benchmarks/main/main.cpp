@@ -133,7 +133,7 @@ int run(const Options& o) {
   }
 
   // (b) work precision, problem by problem
-  const Timing timing{.reps = o.reps, .base = o.clock, .slow_run = 1.0};
+  const Timing timing = sweep_timing(o);
   std::string work_precision;
   for (Problem& p : problems) {
     std::vector<const Job*> mine;

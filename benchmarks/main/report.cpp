@@ -201,8 +201,9 @@ std::string header_text(const Options& o, const std::filesystem::path& out, int 
     s << (i == 0 ? "  peers     " : "; ") << peers[i] << (i + 1 == peers.size() ? "\n" : "");
   }
   s << "  timing    " << (o.clock == TimeBase::wall ? "wall clock" : "thread CPU time")
-    << ", best of " << o.reps << " runs per setting; this run: about "
-    << fmt("%.0f", std::max(10.0, 10 * std::round(estimate / 10)))
+    << ", best of " << o.reps << " runs per setting (of up to " << sweep_timing(o).max_reps
+    << " while they fill less than " << fmt("%.0f", 1e3 * sweep_timing(o).min_total)
+    << " ms); this run: about " << fmt("%.0f", std::max(10.0, 10 * std::round(estimate / 10)))
     << " s on an idle 2-core machine\n"
     << "  results   " << out.string() << "\n";
 #ifndef NDEBUG

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -96,10 +97,14 @@ void record_time(Run& run, std::vector<double>& times, const Stopwatch& watch,
 }
 
 bool another_rep(const Timing& timing, const std::vector<double>& times) {
-  if (static_cast<int>(times.size()) >= timing.reps) {
+  const auto n = static_cast<int>(times.size());
+  if (n == 1 && times.front() > timing.slow_run) {
     return false;
   }
-  return !(times.size() == 1 && times.front() > timing.slow_run);
+  if (n < timing.reps) {
+    return true;
+  }
+  return n < timing.max_reps && std::accumulate(times.begin(), times.end(), 0.0) < timing.min_total;
 }
 
 void finish_timing(Run& run, std::vector<double>& times) {

@@ -20,6 +20,11 @@ namespace tumble::bench {
 const std::vector<double> kTolerances = {1e-3, 1e-4,  1e-5,  1e-6,  1e-7, 1e-8,
                                          1e-9, 1e-10, 1e-11, 1e-12, 1e-13};
 
+Timing sweep_timing(const Options& o) {
+  return Timing{
+      .reps = o.reps, .base = o.clock, .slow_run = 1.0, .min_total = 0.01, .max_reps = 200};
+}
+
 std::string Job::method() const {
   const std::string prefix = method_entry->family == "tumble" ? "tumble " : "";
   return prefix + method_entry->label + " " + scheme_name(scheme);
