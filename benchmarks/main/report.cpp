@@ -167,13 +167,14 @@ double loglog_slope(const std::vector<std::pair<double, double>>& xy) {
 std::string header_text(const Options& o, const std::filesystem::path& out, int runs) {
   std::string load = first_line("/proc/loadavg", "");
   load = load.substr(0, load.find(' ', load.find(' ', load.find(' ') + 1) + 1));
-  // Calibrated on a 2-core machine (2026-11-25, the quick run in 61 s): about 0.02 s per run of
-  // the sweep on average (best of 3), 10 s of micro-benchmarks, 5 s (quick) or 40 s (--full) of
-  // scaling, 10 s (quick) or 30 s (--full) of ensembles, 5 s of plots.
-  const double estimate = 0.02 * runs + (o.micro ? 10.0 : 0.0) +
-                          (o.scaling ? (o.full ? 40.0 : 5.0) : 0.0) +
-                          (o.ensemble ? (o.full ? 30.0 : 10.0) : 0.0) +
-                          (o.mechanisms ? (o.full ? 15.0 : 8.0) : 0.0) + (o.plots ? 5.0 : 0.0);
+  // Calibrated on a 2-core machine (2026-12-05, the quick run in 177 s): about 0.036 s per run of
+  // the sweep on average (1930 runs in 70 s), 10 s of micro-benchmarks, 11 s (quick) of scaling,
+  // 18 s (quick) of ensembles, 61 s (quick) of mechanisms (A05 alone 39 s), 6 s of
+  // plots; --full's studies at the ratios to the quick ones of the 2026-11-25 calibration.
+  const double estimate = 0.036 * runs + (o.micro ? 10.0 : 0.0) +
+                          (o.scaling ? (o.full ? 90.0 : 11.0) : 0.0) +
+                          (o.ensemble ? (o.full ? 55.0 : 18.0) : 0.0) +
+                          (o.mechanisms ? (o.full ? 115.0 : 61.0) : 0.0) + (o.plots ? 6.0 : 0.0);
   std::ostringstream s;
   s << "tumble_bench (" << (o.full ? "full" : "quick")
     << " run): what tumble's rigid-body dynamics cost and the accuracy they buy\n"
