@@ -14,6 +14,7 @@ namespace tumble::bench {
 namespace {
 
 void usage() {
+  const Timing sweep = sweep_timing(Options{});
   std::printf(
       "tumble_bench: what tumble costs and the accuracy it buys: per-call cost of the core "
       "assembly,\nrun time against error on problems with exact answers, cost per step against the "
@@ -23,8 +24,8 @@ void usage() {
       "  --out DIR         where to write CSV, PNG, summary.txt and the raw micro-benchmark "
       "output\n"
       "                    (default: %s)\n"
-      "  --reps N          timed runs per configuration, the best is kept (default: 3); the\n"
-      "                    work-precision runs repeat until they add up to 10 ms (at most 200)\n"
+      "  --reps N          timed runs per configuration, the best is kept (default: %d); the\n"
+      "                    work-precision runs repeat until they add up to %.0f ms (at most %d)\n"
       "  --outputs N       output times per problem at which errors are measured (default: 200)\n"
       "  --problems LIST   comma-separated subset of: tumbling,minor_axis,major_axis,spinner,\n"
       "                    gravity_offset,stiff_top,stiff_top_damped; the mechanisms\n"
@@ -53,7 +54,8 @@ void usage() {
       "                    CVODE methods: SUNDIALS' fused vector operations (default: on; off to\n"
       "                    measure what they change)\n"
       "  --python PATH     the Python with matplotlib for the plots (default: %s)\n",
-      TUMBLE_BENCH_DEFAULT_OUT, TUMBLE_BENCH_PLOT_PYTHON);
+      TUMBLE_BENCH_DEFAULT_OUT, sweep.reps, 1e3 * sweep.min_total, sweep.max_reps,
+      TUMBLE_BENCH_PLOT_PYTHON);
 }
 
 }  // namespace

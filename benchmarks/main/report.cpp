@@ -201,9 +201,10 @@ std::string header_text(const Options& o, const std::filesystem::path& out, int 
   for (std::size_t i = 0; i < peers.size(); ++i) {
     s << (i == 0 ? "  peers     " : "; ") << peers[i] << (i + 1 == peers.size() ? "\n" : "");
   }
+  const Timing sweep = sweep_timing(o);
   s << "  timing    " << (o.clock == TimeBase::wall ? "wall clock" : "thread CPU time")
-    << ", best of " << o.reps << " runs per setting (of up to " << sweep_timing(o).max_reps
-    << " while they fill less than " << fmt("%.0f", 1e3 * sweep_timing(o).min_total)
+    << ", best of " << sweep.reps << " runs per setting (of up to " << sweep.max_reps
+    << " while they fill less than " << fmt("%.0f", 1e3 * sweep.min_total)
     << " ms); this run: about " << fmt("%.0f", std::max(10.0, 10 * std::round(estimate / 10)))
     << " s on an idle 2-core machine\n"
     << "  results   " << out.string() << "\n";

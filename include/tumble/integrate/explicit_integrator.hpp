@@ -92,14 +92,12 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     switches_.assign(static_cast<std::size_t>(scene.body_count()), 0);
     ev_old_.assign(scene.events().size(), 0.0);
     ev_new_.assign(scene.events().size(), 0.0);
-    event_state_.y.setZero(n);  // what event actions see: sized once, so they allocate nothing
-    out_state_.y.setZero(n);    // interpolated outputs, likewise
-    out_state_.base.assign(static_cast<std::size_t>(scene.body_count()),
-                           Matrix3<double>::Identity());
-    event_state_.base.assign(static_cast<std::size_t>(scene.body_count()),
-                             Matrix3<double>::Identity());
-    state_.y.setZero(n);  // sync() copies into both, sized once
-    state_.base.assign(static_cast<std::size_t>(scene.body_count()), Matrix3<double>::Identity());
+    // What event actions see, the interpolated outputs and the current state (sync()): sized
+    // once, so that neither a step nor an output allocates.
+    for (SceneState* s : {&event_state_, &out_state_, &state_}) {
+      s->y.setZero(n);
+      s->base.assign(static_cast<std::size_t>(scene.body_count()), Matrix3<double>::Identity());
+    }
     reset(t0, s0);
   }
 
@@ -573,9 +571,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     return state_;
   }
 
-  /// base_ into s.base, one of the integrator's own states (sized body_count() on construction,
-  /// as base_ always is): a copy of the entries, where assigning the vector spent 52 instructions
-  /// on one 3x3 matrix, at every output.
+  /// base_ into s.base, one of the integrator's own states (sized as base_ on construction): the
+  /// entries copied, not the vector assigned, at every output.
   void copy_bases(SceneState& s) const { std::copy(base_.begin(), base_.end(), s.base.begin()); }
 
   const SceneT* scene_;
