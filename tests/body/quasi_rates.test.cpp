@@ -5,7 +5,8 @@
 // I_g alpha + omega x I_g omega = M_g; a_g = a_c + R (alpha x r_g + omega x (omega x r_g))),
 // against omega = G thetadot (Eq. 1.5), against accelerations() (the same (a_c, alpha) through
 // Eq. 1.10, bit for bit), velocity_rates_into (the same pair written into given vectors; a
-// body held at a fixed point leaves the acceleration alone), and for the error a non-finite
+// body held at a fixed point leaves the acceleration alone; with NoWrench, the torque-free
+// motion), and for the error a non-finite
 // omega raises. For Euler parameters, an Euler-angle sequence, MRP and the rotation vector, at
 // and off the centroid.
 
@@ -150,6 +151,59 @@ TEST_CASE("velocity_rates_into: a body held at a fixed point writes alpha only",
   const tumble::VelocityRates<double> vr = body.velocity_rates(Body::Theta::Zero(), k, w);
   CHECK(vr.alpha == alpha);  // the same computation
   CHECK(vr.acceleration == Vector3d::Zero());
+}
+
+namespace {
+
+/// velocity_rates_into with NoWrench (a body nothing loads: the wrench's terms left out) against
+/// the same call with a zero Wrench (equal values: a zero's sign aside, which == ignores) and
+/// against torque-free Newton-Euler written here: I_g alpha + omega x I_g omega = 0 and a_g = 0,
+/// a_g = a_c + R (alpha x r_g + omega x (omega x r_g)); held at c, I_c alpha + omega x I_c omega =
+/// 0.
+template <ReferencePoint Ref> void check_no_wrench(const Matrix3d& ig, const Vector3d& rg) {
+  using Body = tumble::RigidBody<tumble::EulerParameters, Ref>;
+  const auto mp = tumble::MassProperties<double>::about_centroid(2.0, ig, rg);
+  const Body body = [&] {
+    if constexpr (Ref == ReferencePoint::fixed_point) {
+      return Body(mp, Vector3d(0.5, 0.5, 1.0));
+    } else {
+      return Body(mp);
+    }
+  }();
+  typename Body::Kinematics k;
+  k.mass_properties = &body.mass_properties();
+  k.omega = Vector3d(0.3, 2.0, -0.5);
+  k.rotation = Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  Vector3d a_free = Vector3d::Zero(), alpha_free, a_zero = Vector3d::Zero(), alpha_zero;
+  body.velocity_rates_into(k, tumble::NoWrench{}, a_free, alpha_free);
+  body.velocity_rates_into(k, tumble::Wrench<double>{}, a_zero, alpha_zero);
+  CHECK(alpha_free == alpha_zero);
+  CHECK(a_free == a_zero);
+  const Matrix3d i =
+      Ref == ReferencePoint::fixed_point ? body.mass_properties().inertia_reference() : ig;
+  const double scale = k.omega.squaredNorm() * i.norm();
+  CHECK((i * alpha_free + k.omega.cross(i * k.omega)).norm() < kTol * scale);
+  if constexpr (Ref != ReferencePoint::fixed_point) {
+    const Vector3d a_g =
+        a_free + k.rotation * (alpha_free.cross(rg) + k.omega.cross(k.omega.cross(rg)));
+    CHECK(a_g.norm() < kTol * (1 + scale) * (1 + rg.norm()));
+  }
+}
+
+}  // namespace
+
+TEST_CASE("velocity_rates_into: NoWrench, a body nothing loads, is the torque-free motion",
+          "[body][quasi]") {
+  const Matrix3d principal = Vector3d(1.0, 2.0, 3.0).asDiagonal();
+  Matrix3d general;
+  general << 2.0, 0.3, -0.2, 0.3, 3.0, 0.1, -0.2, 0.1, 4.0;
+  for (const Matrix3d& ig : {principal, general}) {
+    INFO("inertia about the centroid\n" << ig);
+    check_no_wrench<ReferencePoint::centroid>(ig, Vector3d::Zero());
+    check_no_wrench<ReferencePoint::offset>(ig, Vector3d(0.1, -0.2, 0.3));
+    check_no_wrench<ReferencePoint::fixed_point>(ig, Vector3d::Zero());
+    check_no_wrench<ReferencePoint::fixed_point>(ig, Vector3d(0.1, -0.2, 0.3));
+  }
 }
 
 TEST_CASE("quasi_rates: a non-finite omega is reported as such", "[body][quasi]") {

@@ -15,6 +15,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "tumble/body/wrench.hpp"
 #include "tumble/core/math.hpp"
 #include "tumble/core/types.hpp"
 
@@ -78,13 +79,16 @@ template <class S = double> class MassProperties {
   /// Euler's equations about the centroid, the theta-rows of Eq. (1.33) in Newton-Euler form:
   /// alpha = I_g^{-1} (m - omega x I_g omega) for the moment m about the centroid and omega (body
   /// components).
-  [[nodiscard]] Vector3<S> euler_centroid(const Vector3<S>& m, const Vector3<S>& omega) const {
+  /// m = NoWrench{}: no moment, its terms left out.
+  template <class Moment>
+  [[nodiscard]] Vector3<S> euler_centroid(const Moment& m, Vector3<S> omega) const {
     return euler(principal_centroid_, euler_centroid_, inertia_centroid_, inertia_inverse_, m,
                  omega);
   }
   /// The same about the reference point (the theta-rows of Eq. (1.32) with rddot_oc = 0):
   /// alpha = I_c^{-1} (m - omega x I_c omega), m about c.
-  [[nodiscard]] Vector3<S> euler_reference(const Vector3<S>& m, const Vector3<S>& omega) const {
+  template <class Moment>
+  [[nodiscard]] Vector3<S> euler_reference(const Moment& m, Vector3<S> omega) const {
     return euler(principal_reference_, euler_reference_, inertia_reference_,
                  inertia_reference_inverse_, m, omega);
   }
@@ -146,17 +150,31 @@ template <class S = double> class MassProperties {
   /// I3 omega_3 omega_2 and I2 omega_2 omega_3, which cancel when two moments are close. On 24
   /// tumbling bodies (Fehlberg 7(8), 50 s, the best of tol 1e-10 to 1e-13 against a long-double
   /// reference) the attitude errors had the same median to 3 % (2.64e-12 against 2.56e-12 rad).
+  /// m = NoWrench{}: the same with m = 0, to the bit but for the sign of a zero. omega is a copy
+  /// (here and in euler_centroid, euler_reference): GCC 12 may leave Eigen's 3 x 3 products out of
+  /// line, and a reference passed to one would make the caller's kinematics escape to memory (the
+  /// scene's right-hand side then kept them on the stack: docs/benchmarks/floors.md, 2026-12-05).
+  template <class Moment>
   [[gnu::always_inline]] static Vector3<S> euler(bool principal, const Vector3<S>& c,
                                                  const Matrix3<S>& i, const Matrix3<S>& i_inv,
-                                                 const Vector3<S>& m, const Vector3<S>& omega) {
+                                                 const Moment& m, const Vector3<S> omega) {
+    constexpr bool loaded = !std::is_same_v<Moment, NoWrench>;
     if (principal) {
-      return Vector3<S>(i_inv(0, 0) * m(0) + c(0) * omega(1) * omega(2),
-                        i_inv(1, 1) * m(1) + c(1) * omega(2) * omega(0),
-                        i_inv(2, 2) * m(2) + c(2) * omega(0) * omega(1));
+      if constexpr (loaded) {
+        return Vector3<S>(i_inv(0, 0) * m(0) + c(0) * omega(1) * omega(2),
+                          i_inv(1, 1) * m(1) + c(1) * omega(2) * omega(0),
+                          i_inv(2, 2) * m(2) + c(2) * omega(0) * omega(1));
+      } else {
+        return Vector3<S>(c(0) * omega(1) * omega(2), c(1) * omega(2) * omega(0),
+                          c(2) * omega(0) * omega(1));
+      }
     }
-    const Vector3<S> h = i * omega;
-    const Vector3<S> mc = m - omega.cross(h);
-    return i_inv.lazyProduct(mc);
+    const Vector3<S> h = detail::mat3_times(i, omega);
+    if constexpr (loaded) {
+      return detail::mat3_times(i_inv, Vector3<S>(m - omega.cross(h)));
+    } else {
+      return detail::mat3_times(i_inv, Vector3<S>(-omega.cross(h)));
+    }
   }
 
   static bool diagonal(const Matrix3<S>& m) {

@@ -31,6 +31,7 @@
 // from the inverse map P::thetadot(theta, omega), vdot = a_c and omegadot = alpha; neither
 // thetaddot nor Gdot thetadot is formed there.
 
+#include <concepts>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -349,9 +350,11 @@ class RigidBody {
   /// for a body held at a fixed point (its a_c is zero and has no place in the state). Returned
   /// as a VelocityRates, the pair stayed in memory under GCC 12 -O3 even inlined, and each rate
   /// went through the stack on its way to y': 1.2x the time of an explicit run on one body
-  /// (docs/benchmarks/floors.md, 2026-12-02).
-  template <class Acceleration, class Alpha>
-  [[gnu::always_inline]] void velocity_rates_into(const Kinematics& k, const Wrench<S>& w,
+  /// (docs/benchmarks/floors.md, 2026-12-02). w = NoWrench{}: a body nothing loads, the wrench's
+  /// terms left out.
+  template <class W, class Acceleration, class Alpha>
+  requires std::same_as<W, Wrench<S>> || std::same_as<W, NoWrench>
+  [[gnu::always_inline]] void velocity_rates_into(const Kinematics& k, const W& w,
                                                   Acceleration&& acceleration,
                                                   Alpha&& alpha) const {
     rates_into([&] { return k.rotation; }, k.omega, w, acceleration, alpha);
@@ -505,34 +508,53 @@ class RigidBody {
   }
 
   /// velocity_rates_impl into acc and alpha (acc not written when fixed).
-  template <class RotationFn, class Acc, class Alpha>
-  [[gnu::always_inline]] void rates_into(RotationFn&& rotation_fn, const Vector3<S>& om,
-                                         const Wrench<S>& w, Acc& acc, Alpha& alpha) const {
+  template <class RotationFn, class W, class Acc, class Alpha>
+  [[gnu::always_inline]] void rates_into(RotationFn&& rotation_fn, const Vector3<S>& om, const W& w,
+                                         Acc& acc, Alpha& alpha) const {
+    constexpr bool loaded = !std::is_same_v<W, NoWrench>;
     // Products are evaluated into named vectors: small expression trees that the compiler inlines
     // whole (nested product expressions were left as out-of-line calls, 30% of the time).
     // Eq. (1.32) through the Newton-Euler closed form of the file comment; Eq. (1.33) at the
     // centroid, where r_g = 0 removes the coupling terms.
     if constexpr (at_centroid) {
       (void)rotation_fn;
-      alpha = mp_.euler_centroid(w.moment, om);  // I_g^-1 (M_g - omega x I_g omega)
-      acc = w.force / mp_.mass();
+      if constexpr (loaded) {
+        alpha = mp_.euler_centroid(w.moment, om);  // I_g^-1 (M_g - omega x I_g omega)
+        acc = w.force / mp_.mass();
+      } else {
+        alpha = mp_.euler_centroid(w, om);
+        acc.setZero();
+      }
     } else if constexpr (fixed) {
       // The theta-rows of Eq. (1.32) with rddot_oc = 0: I_c alpha = M_c - omega x I_c omega,
       // moments about the fixed point c; the force at c (reaction included) does not enter.
       (void)rotation_fn;
       (void)acc;
-      alpha = mp_.euler_reference(w.moment, om);
+      if constexpr (loaded) {
+        alpha = mp_.euler_reference(w.moment, om);
+      } else {
+        alpha = mp_.euler_reference(w, om);
+      }
     } else {
       const Matrix3<S> r = rotation_fn();
       const Vector3<S>& rg = mp_.centroid();
       const Vector3<S> h = mp_.inertia_centroid() * om;  // angular momentum about g, body
       // Moment about the centroid: M_g = M_c - r_g x F^f.
-      const Vector3<S> fb = r.transpose() * w.force;
-      const Vector3<S> mg = w.moment - rg.cross(fb) - om.cross(h);
+      Vector3<S> mg;
+      if constexpr (loaded) {
+        const Vector3<S> fb = r.transpose() * w.force;
+        mg = w.moment - rg.cross(fb) - om.cross(h);
+      } else {
+        mg = -om.cross(h);
+      }
       const Vector3<S> al = mp_.inertia_centroid_inverse().lazyProduct(mg);
       const Vector3<S> ab = al.cross(rg) + om.cross(om.cross(rg));
       alpha = al;
-      acc = w.force / mp_.mass() - r * ab;
+      if constexpr (loaded) {
+        acc = w.force / mp_.mass() - r * ab;
+      } else {
+        acc = -(r * ab);
+      }
     }
   }
 

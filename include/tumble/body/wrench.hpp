@@ -37,4 +37,9 @@ template <class S = double> struct Wrench {
   }
 };
 
+/// No wrench at all, known at compile time: what a body of a scene without loads feels. The
+/// rates leave the wrench's terms out (RigidBody::velocity_rates_into), which the compiler may not
+/// do for a zero Wrench: 0 * x is not 0 when x is infinite.
+struct NoWrench {};
+
 }  // namespace tumble

@@ -74,9 +74,9 @@ void scene_loads([[maybe_unused]] const SceneT& scene, [[maybe_unused]] SceneWor
 /// Pass 3 for one body: the rate of its block of y for its kinematics k and wrench w (checked for
 /// finiteness when Checked); in [q; qdot], with the functions of theta that body_kinematics kept
 /// in `theta_functions`.
-template <bool Checked, class E, class Y, class K, class Pre, class Ydot>
-[[gnu::always_inline]] inline void entry_rates(const E& e, const Y& y, const K& k,
-                                               const Wrench<double>& w, bool stabilize,
+template <bool Checked, class E, class Y, class K, class W, class Pre, class Ydot>
+[[gnu::always_inline]] inline void entry_rates(const E& e, const Y& y, const K& k, const W& w,
+                                               bool stabilize,
                                                [[maybe_unused]] const Pre& theta_functions,
                                                Ydot& ydot) {
   using Body = std::remove_cvref_t<decltype(e.body)>;
@@ -93,8 +93,9 @@ template <bool Checked, class E, class Y, class K, class Pre, class Ydot>
   }
 }
 
-/// A scene without loads (and joints): each body's rates from its own block, with a zero
-/// wrench; nothing is written to the workspace (no load reads it).
+/// A scene without loads (and joints): each body's rates from its own block, with no wrench
+/// (NoWrench: its terms left out, not multiplied by zero); nothing is written to the workspace
+/// (no load reads it).
 template <bool Checked, class SceneT, class Y, class Ydot>
 [[gnu::always_inline]] inline void unloaded_rates(const SceneT& scene, SceneWorkspace<SceneT>& ws,
                                                   const Y& y, std::span<const Matrix3<double>> base,
@@ -107,8 +108,7 @@ template <bool Checked, class SceneT, class Y, class Ydot>
     body_kinematics<E::form>(e.body, y.template segment<Body::nq>(e.offset),
                              y.template segment<E::rate_size>(e.rates), base[e.id],
                              Body::reference == ReferencePoint::offset, k, &theta_functions);
-    entry_rates<Checked>(e, y, k, Wrench<double>{}, ws.stabilize_constraints, theta_functions,
-                         ydot);
+    entry_rates<Checked>(e, y, k, NoWrench{}, ws.stabilize_constraints, theta_functions, ydot);
   });
 }
 
@@ -121,7 +121,7 @@ template <FiniteCheck Check = FiniteCheck::each_call, class SceneT, class Y, cla
 void rhs(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y& y,
          std::span<const Matrix3<double>> base, Ydot&& ydot) {
   constexpr bool checked = Check == FiniteCheck::each_call;
-  if constexpr (std::tuple_size_v<typename SceneT::LoadTypes> == 0 && !SceneT::has_joints) {
+  if constexpr (!SceneT::has_loads && !SceneT::has_joints) {
     // detail::unloaded_rates written out: calling it here (the same work) made a lean body's
     // Fehlberg 7(8) run 17-19 % slower under GCC 12 -O3, and a loop of its per-body step 25 %
     // with N = Dynamic (docs/benchmarks/floors.md, 2026-11-27).
@@ -133,8 +133,8 @@ void rhs(const SceneT& scene, SceneWorkspace<SceneT>& ws, double t, const Y& y,
       detail::body_kinematics<E::form>(
           e.body, y.template segment<Body::nq>(e.offset), y.template segment<E::rate_size>(e.rates),
           base[e.id], Body::reference == ReferencePoint::offset, k, &theta_functions);
-      detail::entry_rates<checked>(e, y, k, Wrench<double>{}, ws.stabilize_constraints,
-                                   theta_functions, ydot);
+      detail::entry_rates<checked>(e, y, k, NoWrench{}, ws.stabilize_constraints, theta_functions,
+                                   ydot);
     });
   } else {
     if constexpr (!SceneT::has_joints) {

@@ -216,6 +216,8 @@ class Scene<Bodies<B...>, Loads<L...>, Form, Joints<J...>> {
       (detail::DifferentiableLoad<L> && ...) &&
       (sizeof...(J) == 0 ||
        (Form == StateForm::quasi_velocities && (detail::DifferentiableJoint<J> && ...)));
+  /// True when the scene's type lists load types (Loads<>: none, known at compile time).
+  static constexpr bool has_loads = sizeof...(L) > 0;
   /// True when the scene may hold joints (a mechanism: scene/joints.hpp).
   static constexpr bool has_joints = sizeof...(J) > 0;
   /// True when some load type acts between two bodies.

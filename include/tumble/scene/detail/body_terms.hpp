@@ -67,7 +67,17 @@ template <StateForm Form, class Body, class Q, class Qd, class S, class Pre = st
   }
 }
 
-/// qddot of `body` (Eq. 1.32 through RigidBody::accelerations) for the wrench w, written into
+/// w as a Wrench: NoWrench as a zero one, for the cold paths that name a non-finite rate's cause.
+template <class S, class W> Wrench<S> as_wrench(const W& w) {
+  if constexpr (std::is_same_v<W, NoWrench>) {
+    return Wrench<S>{};
+  } else {
+    return w;
+  }
+}
+
+/// qddot of `body` (Eq. 1.32 through RigidBody::accelerations) for the wrench w (or NoWrench: no
+/// load at all), written into
 /// qdd (a writable vector of size nq, such as the body's block of y'). For Euler parameters with
 /// `stabilize`, the constraint acceleration is Baumgarte-stabilized:
 ///   p.pddot = -|pdot|^2 - 2 g (p.pdot) - g^2 (|p|^2 - 1)/2,  g = |omega|,
@@ -80,11 +90,11 @@ template <StateForm Form, class Body, class Q, class Qd, class S, class Pre = st
 /// path); else unchecked, for a caller that checks the results itself (rhs.hpp,
 /// FiniteCheck::by_caller). `theta_functions`: those body_kinematics kept at this q (thetaddot
 /// then evaluates no function of theta again), or nullptr (the default: evaluated here).
-template <bool Checked = true, class JBody, class Qdd, class Pre = std::nullptr_t>
+template <bool Checked = true, class JBody, class W, class Qdd, class Pre = std::nullptr_t>
 [[gnu::always_inline]] inline void body_accelerations_into(
     const JBody& body, const typename JBody::Coords& q, const typename JBody::Coords& qd,
-    const typename JBody::Kinematics& k, const Wrench<typename JBody::Scalar>& w,
-    [[maybe_unused]] bool stabilize, Qdd&& qdd, [[maybe_unused]] Pre theta_functions = nullptr) {
+    const typename JBody::Kinematics& k, const W& w, [[maybe_unused]] bool stabilize, Qdd&& qdd,
+    [[maybe_unused]] Pre theta_functions = nullptr) {
   using S = typename JBody::Scalar;
   using Theta = typename JBody::Theta;
   const Theta th = q.template tail<JBody::n_theta>();
@@ -103,7 +113,7 @@ template <bool Checked = true, class JBody, class Qdd, class Pre = std::nullptr_
   }
   if constexpr (Checked) {
     if (!detail::all_finite_fast(qdd)) [[unlikely]] {
-      qdd = body.accelerations(q, qd, k, w);  // the same values: throws, naming the cause
+      qdd = body.accelerations(q, qd, k, as_wrench<S>(w));  // the same: throws, naming the cause
     }
   }
   if constexpr (JBody::Param::has_constraint) {
@@ -156,11 +166,11 @@ template <bool Checked = true, class JBody>
 /// The rate comes from the body's public pieces (velocity_rates_into, P::thetadot) straight into
 /// xd; Checked: a non-finite result throws through RigidBody::quasi_rates, as for
 /// body_accelerations_into.
-template <bool Checked = true, class JBody, class Xd>
+template <bool Checked = true, class JBody, class W, class Xd>
 [[gnu::always_inline]] inline void body_quasi_rates_into(const JBody& body,
                                                          const typename JBody::Coords& q,
                                                          const typename JBody::Kinematics& k,
-                                                         const Wrench<typename JBody::Scalar>& w,
+                                                         const W& w,
                                                          [[maybe_unused]] bool stabilize, Xd&& xd) {
   using S = typename JBody::Scalar;
   const typename JBody::Theta th = q.template tail<JBody::n_theta>();
@@ -174,7 +184,7 @@ template <bool Checked = true, class JBody, class Xd>
   }
   if constexpr (Checked) {
     if (!detail::all_finite_fast(xd)) [[unlikely]] {
-      xd = body.quasi_rates(q, k, w);  // the same values: throws, naming the cause
+      xd = body.quasi_rates(q, k, as_wrench<S>(w));  // the same values: throws, naming the cause
     }
   }
   if constexpr (JBody::Param::has_constraint) {
