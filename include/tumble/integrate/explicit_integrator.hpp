@@ -250,8 +250,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   }
 
   /// What Odeint calls for the stages of a step of the stepper S: x' = f(t, x), counted,
-  /// unchecked (see stage()).
+  /// unchecked (see stage()); inlined into them for a scene without loads and joints.
   template <class S> struct System {
+    static constexpr bool inline_stages = !SceneT::has_loads && !SceneT::has_joints;
     OdeintIntegrator* self;
     [[gnu::always_inline]] void operator()(const State& x, State& dxdt, double t) const {
       self->template stage<S::fsal>(x, dxdt, t);
