@@ -150,10 +150,11 @@ template <class ErrorStepper> class OdeintControlled {
   /// The step with every call in it inlined (flatten), the system's too, into each of the
   /// stepper's stage sums (13 for Fehlberg 7(8)), whatever the translation unit's inlining budget.
   /// For a right-hand side of about a hundred instructions (a scene without loads or joints) the
-  /// call, its register saves and the loads it repeats were about 15 % of a torque-free body's
-  /// run: 438k instructions against 398k for the tumbling body to 1e-6, the same results to the
-  /// bit (docs/benchmarks/floors.md, 2026-12-05). A larger right-hand side stays one function,
-  /// called: inlined 13 times it would cost code and compile time for a smaller share.
+  /// call, its register saves and the loads it repeats were a tenth of a torque-free body's run:
+  /// 438k instructions against 398k for the tumbling body to 1e-6 in a standalone program, the
+  /// same results to the bit (docs/benchmarks/floors.md, 2026-12-05). A larger right-hand side
+  /// stays one function, called: inlined 13 times it would cost code and compile time for a
+  /// smaller share.
   template <class Sys, class State>
   [[gnu::flatten]] bool try_step_inlined(Sys sys, const State& x, const State& dxdt, double& t,
                                          State& x_new, State& dxdt_new, double& h) {
