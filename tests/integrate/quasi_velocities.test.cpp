@@ -23,6 +23,7 @@
 
 #include "support/catch.hpp"
 #include "support/random.hpp"
+#include "support/rotation.hpp"
 #include "support/scene_fixtures.hpp"
 #include "support/torque_free.hpp"
 #include "tumble/cvode.hpp"
@@ -256,8 +257,7 @@ TEST_CASE("quasi velocities: a saved state restarts through chart switches", "[i
   using Body = RigidBody<P>;
   const Vector3d spin(0.0, 0.0, 2.0);
   const Matrix3d r_tumble =
-      Eigen::Quaterniond::FromTwoVectors(kInertia.cwiseProduct(kOmega), Vector3d(1, 1, 1))
-          .toRotationMatrix();
+      tumble::test::rotation_onto(kInertia.cwiseProduct(kOmega), Vector3d(1, 1, 1));
   const Matrix3d r_spin = rot(-std::numbers::pi / 2, Vector3d::UnitX());  // body z -> inertial y
   OneBody<P, StateForm::quasi_velocities> scene;
   const auto a =

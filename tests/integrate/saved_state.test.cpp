@@ -14,6 +14,7 @@
 #include "support/catch.hpp"
 #include "support/parameterizations.hpp"
 #include "support/random.hpp"
+#include "support/rotation.hpp"
 #include "support/scene_fixtures.hpp"
 #include "support/torque_free.hpp"
 #include "tumble/body/rigid_body.hpp"
@@ -35,6 +36,7 @@ using tumble::SceneIntegrator;
 using tumble::SceneState;
 using tumble::test::rot;
 using tumble::test::rotation_angle_between;
+using tumble::test::rotation_onto;
 using tumble::test::TorqueFreeBody;
 using tumble::test::tumbling_mass;
 
@@ -52,9 +54,7 @@ const Vector3d kOmega = tumble::test::kTumblingOmega;
 template <class P> void saved_state_round_trip() {
   using Body = RigidBody<P>;
   const Vector3d spin(0.0, 0.0, 2.0);
-  const Matrix3d r_tumble =
-      Eigen::Quaterniond::FromTwoVectors(kInertia.cwiseProduct(kOmega), Vector3d(1, 1, 1))
-          .toRotationMatrix();
+  const Matrix3d r_tumble = rotation_onto(kInertia.cwiseProduct(kOmega), Vector3d(1, 1, 1));
   const Matrix3d r_spin = rot(-std::numbers::pi / 2, Vector3d::UnitX());  // body z -> inertial y
   Scene<Bodies<Body>> scene;
   const auto a = scene.add(Body(tumbling_mass()), {.rotation = r_tumble, .omega = kOmega});
