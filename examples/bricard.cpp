@@ -33,6 +33,20 @@ using Eigen::Matrix3d;
 using Eigen::Vector3d;
 using Rod = tumble::RigidBody<tumble::EulerParameters>;
 
+/// The rotation that turns body x onto the unit vector d, as Eigen's Quaternion::FromTwoVectors
+/// gives it (its arithmetic, so the same doubles) but without the SVD it compiles for opposite
+/// directions: d = -x is half a turn about z, the rotation that SVD gives.
+inline Matrix3d x_onto(const Vector3d& d) {
+  if (d.x() == -1.0) {
+    return Vector3d(-1, -1, 1).asDiagonal();
+  }
+  const double s = std::sqrt((1 + d.x()) * 2);
+  Eigen::Quaterniond q;
+  q.vec() = Vector3d::UnitX().cross(d) * (1 / s);
+  q.w() = s * 0.5;
+  return q.toRotationMatrix();
+}
+
 /// The linkage of the file comment; with Extra = Universal, the twin (the joint at P5 a universal
 /// joint: 4 rows, the arm fixed in the rod along inertial y at the start).
 template <class... Extra> struct Bricard {
@@ -55,8 +69,7 @@ template <class... Extra> struct Bricard {
         Vector3d(m * s * s / 6, m * (l * l + s * s) / 12, m * (l * l + s * s) / 12).asDiagonal()));
     std::vector<Matrix3d> r;  // rod i from P_i to P_i+1, its body x along it
     for (int i = 0; i < 5; ++i) {
-      r.push_back(Eigen::Quaterniond::FromTwoVectors(Vector3d::UnitX(), p[i + 1] - p[i])
-                      .toRotationMatrix());
+      r.push_back(x_onto(p[i + 1] - p[i]));
       rods.push_back(scene.add(rod, {.position = 0.5 * (p[i] + p[i + 1]), .rotation = r.back()}));
       scene.add_load(rods.back(),
                      tumble::UniformGravity(Vector3d(kGravity[0], kGravity[1], kGravity[2])));
