@@ -169,11 +169,13 @@ template <class S = double> class MassProperties {
                           c(2) * omega(0) * omega(1));
       }
     }
-    const Vector3<S> h = detail::mat3_times(i, omega);
+    const Vector3<S> h = i * omega;
     if constexpr (loaded) {
-      return detail::mat3_times(i_inv, Vector3<S>(m - omega.cross(h)));
+      const Vector3<S> mc = m - omega.cross(h);
+      return i_inv.lazyProduct(mc);
     } else {
-      return detail::mat3_times(i_inv, Vector3<S>(-omega.cross(h)));
+      const Vector3<S> mc = -omega.cross(h);
+      return i_inv.lazyProduct(mc);
     }
   }
 

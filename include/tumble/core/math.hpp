@@ -27,17 +27,6 @@ template <class Derived>
 
 namespace detail {
 
-/// m v for a 3 x 3 matrix, written out, so that it is inlined wherever it is called: in a large
-/// translation unit GCC 12 can leave Eigen's 3 x 3 product out of line, even in a function marked
-/// flatten, and the call then costs more than the product (mass_properties.hpp, euler()).
-template <class S>
-[[nodiscard, gnu::always_inline]] inline Vector3<S> mat3_times(const Matrix3<S>& m,
-                                                               const Vector3<S>& v) {
-  return Vector3<S>(m(0, 0) * v(0) + m(0, 1) * v(1) + m(0, 2) * v(2),
-                    m(1, 0) * v(0) + m(1, 1) * v(1) + m(1, 2) * v(2),
-                    m(2, 0) * v(0) + m(2, 1) * v(1) + m(2, 2) * v(2));
-}
-
 /// The plain floating-point value of a scalar: itself for arithmetic types, `.value()` for
 /// Eigen's AutoDiffScalar (recursively, so nested AD works too).
 template <class S> [[nodiscard]] constexpr auto value(const S& x) {
