@@ -170,13 +170,11 @@ template <class S = double> class MassProperties {
       }
     }
     const Vector3<S> h = i * omega;
+    Vector3<S> mc = -omega.cross(h);  // m - omega x h, exactly: a - b is a + (-b)
     if constexpr (loaded) {
-      const Vector3<S> mc = m - omega.cross(h);
-      return i_inv.lazyProduct(mc);
-    } else {
-      const Vector3<S> mc = -omega.cross(h);
-      return i_inv.lazyProduct(mc);
+      mc += m;
     }
+    return i_inv.lazyProduct(mc);
   }
 
   static bool diagonal(const Matrix3<S>& m) {
