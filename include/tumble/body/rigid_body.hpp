@@ -540,20 +540,18 @@ class RigidBody {
       const Vector3<S>& rg = mp_.centroid();
       const Vector3<S> h = mp_.inertia_centroid() * om;  // angular momentum about g, body
       // Moment about the centroid: M_g = M_c - r_g x F^f.
-      Vector3<S> mg;
+      // Each "x - y" below is formed as -y, plus x when there is a load: the same bits.
+      Vector3<S> mg = -om.cross(h);
       if constexpr (loaded) {
         const Vector3<S> fb = r.transpose() * w.force;
-        mg = w.moment - rg.cross(fb) - om.cross(h);
-      } else {
-        mg = -om.cross(h);
+        mg += w.moment - rg.cross(fb);
       }
       const Vector3<S> al = mp_.inertia_centroid_inverse().lazyProduct(mg);
       const Vector3<S> ab = al.cross(rg) + om.cross(om.cross(rg));
       alpha = al;
+      acc = -(r * ab);
       if constexpr (loaded) {
-        acc = w.force / mp_.mass() - r * ab;
-      } else {
-        acc = -(r * ab);
+        acc += w.force / mp_.mass();
       }
     }
   }
