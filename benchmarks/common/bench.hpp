@@ -167,7 +167,8 @@ struct Run {
   double wall_seconds = std::numeric_limits<double>::infinity();     ///< best, wall clock
   double cpu_seconds = std::numeric_limits<double>::infinity();      ///< best, CPU time
   int reps = 0;
-  std::vector<Sample> samples;  ///< at Problem::times
+  std::vector<double> rep_seconds;  ///< every repetition's time, Timing's clock, sorted
+  std::vector<Sample> samples;      ///< at Problem::times
   long steps = 0;
   long rhs_evals = 0;         ///< right-hand sides (RK4: 4 per step)
   long linear_rhs_evals = 0;  ///< right-hand sides for difference-quotient Jacobians
@@ -215,6 +216,18 @@ struct Timing {
   /// run, a cold cache, a frequency change. 0: exactly `reps`.
   double min_total = 0.0;
   int max_reps = 200;
+  /// The work-precision sweep times each setting in this many rounds over a problem's settings
+  /// (one setting's repetitions spread over the problem's whole sweep, so that a slow stretch of
+  /// a shared machine lands on every method alike); each round has round()'s share.
+  int rounds = 1;
+  [[nodiscard]] Timing round() const {
+    Timing t = *this;
+    t.reps = (reps + rounds - 1) / rounds;
+    t.min_total = min_total / rounds;
+    t.max_reps = std::max(1, max_reps / rounds);
+    t.rounds = 1;
+    return t;
+  }
 };
 
 /// Records one timed repetition, measured by `watch`, into `run` (the best on each clock, and
@@ -232,8 +245,10 @@ template <class Statistics> void record_statistics(Run& run, const Statistics& s
   run.convergence_failures = st.nonlinear_convergence_failures;
   run.reinits = st.reinits;
 }
-/// Finishes the timing record (median, reps).
+/// Finishes the timing record (median, reps, rep_seconds).
 void finish_timing(Run& run, std::vector<double>& times);
+/// Adds the repetitions of `again`, a later round of the same run, to `run`'s timing record.
+void merge_timing(Run& run, const Run& again);
 /// Whether another repetition should be run after `done` of them.
 bool another_rep(const Timing& timing, const std::vector<double>& times);
 

@@ -63,7 +63,8 @@ extern const std::vector<double> kTolerances;
 
 /// How the sweep times a setting: the best of --reps runs, and of more when they are fast, until
 /// the runs add up to min_total (a setting of 50 us is timed 200 times, one of 2 ms 5 times); a
-/// single run once one takes longer than slow_run.
+/// single run once one takes longer than slow_run. The repetitions are made in up to 3 rounds
+/// over each problem's settings (Timing::rounds).
 Timing sweep_timing(const Options& o);
 
 /// One measurement to make: a method on a problem at one setting.
@@ -90,8 +91,12 @@ std::vector<Method> methods(const Options& o);
 /// Every run of the work-precision sweep, problem by problem, filtered by --methods.
 std::vector<Job> plan_jobs(const Options& o, const std::vector<Problem>& problems,
                            const std::vector<Method>& methods);
-/// Makes one run and measures its errors (the samples are then dropped).
+/// Makes one run and measures its errors (the samples are then dropped); `timing` is one
+/// round's (Timing::round()).
 Row run_job(const Job& j, const Options& o, const Timing& timing);
+/// A later round of r's run: its repetitions added to r's timing record (Timing::rounds), unless
+/// it failed or took longer than timing.slow_run.
+void retime_job(Row& r, const Options& o, const Timing& timing);
 /// The stiff top's reference integration (it has no closed form), into p.reference.
 void make_stiff_reference(Problem& p);
 /// The bodies counts and repetitions of the scaling study.

@@ -142,16 +142,22 @@ int run(const Options& o) {
         mine.push_back(&j);
       }
     }
-    progress.begin("work precision, " + p.id, static_cast<int>(mine.size()));
+    progress.begin("work precision, " + p.id, static_cast<int>(mine.size()) * timing.rounds);
     if (!p.exact) {
       make_stiff_reference(p);
     }
     std::vector<Row> rows;
     int failed = 0;
     for (const Job* j : mine) {
-      rows.push_back(run_job(*j, o, timing));
+      rows.push_back(run_job(*j, o, timing.round()));
       failed += rows.back().run.ok ? 0 : 1;
       progress.step();
+    }
+    for (int round = 1; round < timing.rounds; ++round) {
+      for (Row& r : rows) {
+        retime_job(r, o, timing);
+        progress.step();
+      }
     }
     progress.end(failures(failed));
     write_runs_csv(out / ("work_precision_" + p.id + ".csv"), rows);

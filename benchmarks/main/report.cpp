@@ -204,8 +204,9 @@ std::string header_text(const Options& o, const std::filesystem::path& out, int 
   const Timing sweep = sweep_timing(o);
   s << "  timing    " << (o.clock == TimeBase::wall ? "wall clock" : "thread CPU time")
     << ", best of " << sweep.reps << " runs per setting (of up to " << sweep.max_reps
-    << " while they fill less than " << fmt("%.0f", 1e3 * sweep.min_total)
-    << " ms); this run: about " << fmt("%.0f", std::max(10.0, 10 * std::round(estimate / 10)))
+    << " while they fill less than " << fmt("%.0f", 1e3 * sweep.min_total) << " ms), in "
+    << sweep.rounds << " rounds over each problem's settings; this run: about "
+    << fmt("%.0f", std::max(10.0, 10 * std::round(estimate / 10)))
     << " s on an idle 2-core machine\n"
     << "  results   " << out.string() << "\n";
 #ifndef NDEBUG

@@ -115,6 +115,16 @@ void finish_timing(Run& run, std::vector<double>& times) {
   std::sort(times.begin(), times.end());
   const std::size_t n = times.size();
   run.seconds_median = n % 2 == 1 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+  run.rep_seconds = times;
+}
+
+void merge_timing(Run& run, const Run& again) {
+  run.seconds = std::min(run.seconds, again.seconds);
+  run.wall_seconds = std::min(run.wall_seconds, again.wall_seconds);
+  run.cpu_seconds = std::min(run.cpu_seconds, again.cpu_seconds);
+  std::vector<double> times = run.rep_seconds;
+  times.insert(times.end(), again.rep_seconds.begin(), again.rep_seconds.end());
+  finish_timing(run, times);
 }
 
 // ---- the problems
