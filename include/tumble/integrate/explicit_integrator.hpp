@@ -265,7 +265,6 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     return Eigen::Map<const Vec>(x.data(), size());
   }
   std::span<const Matrix3<double>> bases() const { return base_; }
-
   static std::string num(double v) { return detail::format_double(v); }
   static constexpr const char* kWho = "tumble::OdeintIntegrator";
 
@@ -461,10 +460,13 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   }
 
   /// After an accepted step from (t_, x_) to (t_new, x_new_): events, then projection and charts.
+  /// The step's start is kept (x_old_) only for Dormand-Prince's dense output and the events.
   template <class S, class OnStep>
   void finish_step(S& stepper, const System<S>& sys, double t_new, OnStep& on_step) {
-    std::swap(x_old_, x_);
-    std::swap(dxdt_old_, dxdt_);
+    if (S::dense || !ev_old_.empty()) {
+      std::swap(x_old_, x_);
+      std::swap(dxdt_old_, dxdt_);
+    }
     std::swap(x_, x_new_);
     if constexpr (S::fsal) {
       std::swap(dxdt_, dxdt_new_);
