@@ -99,15 +99,23 @@ std::vector<Job> plan_jobs(const Options& o, const std::vector<Problem>& problem
   return jobs;
 }
 
+namespace {
+
+/// What the method of job j is asked for, with the options that apply to every method.
+MethodSetting setting_of(const Job& j, const Options& o) {
+  return MethodSetting{.scheme = j.scheme,
+                       .tol = j.tol,
+                       .substeps = j.substeps,
+                       .exact_jacobian = o.exact_jacobian,
+                       .fused = o.fused_ops};
+}
+
+}  // namespace
+
 Row run_job(const Job& j, const Options& o, const Timing& timing) {
   const Problem& p = *j.problem;
   Row r{j, {}, {}};
-  const MethodSetting setting{.scheme = j.scheme,
-                              .tol = j.tol,
-                              .substeps = j.substeps,
-                              .exact_jacobian = o.exact_jacobian,
-                              .fused = o.fused_ops};
-  r.run = j.method_entry->run(p, setting, timing);
+  r.run = j.method_entry->run(p, setting_of(j, o), timing);
   r.errors = evaluate(p, r.run);
   r.run.samples.clear();
   r.run.samples.shrink_to_fit();
@@ -118,12 +126,7 @@ void retime_job(Row& r, const Options& o, const Timing& timing) {
   if (!r.run.ok || r.run.seconds > timing.slow_run) {
     return;  // a failed run is not timed; a slow one is far above the noise a round averages out
   }
-  const MethodSetting setting{.scheme = r.job.scheme,
-                              .tol = r.job.tol,
-                              .substeps = r.job.substeps,
-                              .exact_jacobian = o.exact_jacobian,
-                              .fused = o.fused_ops};
-  const Run again = r.job.method_entry->run(*r.job.problem, setting, timing.round());
+  const Run again = r.job.method_entry->run(*r.job.problem, setting_of(r.job, o), timing.round());
   if (again.ok) {  // the same deterministic run: its counters and samples are those of round 1
     merge_timing(r.run, again);
   }
