@@ -29,9 +29,12 @@ inline MassProperties<> mass_properties(const Problem& p) {
                                           p.centroid);
 }
 
-/// What a method records at an output time, read from a state of the scene.
+/// What a method records at an output time, read from a state of the scene. Flattened: the
+/// floors' samples (floors/rhs.hpp) are inlined into their observers, and this unit's inlining
+/// budget (work_precision/tumble_d.cpp) would otherwise leave tumble's accessors called.
 template <class SceneT, class Body>
-Sample scene_sample(const SceneT& scene, BodyId<Body> id, const SceneStateView& y) {
+[[gnu::flatten]] Sample scene_sample(const SceneT& scene, BodyId<Body> id,
+                                     const SceneStateView& y) {
   Sample s;
   s.rotation = tumble::rotation(scene, id, y);
   s.omega = tumble::omega(scene, id, y);

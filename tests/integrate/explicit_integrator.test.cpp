@@ -606,6 +606,81 @@ TEST_CASE("explicit integrator: a load's RecoverableError shortens the step, as 
   }
 }
 
+/// A load that adds nothing. In a scene's type it makes the right-hand side call a load, so that
+/// the explicit integrator's stages count themselves (OdeintIntegrator::kStagesCallUserCode).
+struct AddsNothing {
+  static constexpr bool needs_rotation(tumble::ReferencePoint) { return false; }
+  template <class S, class K> void apply(const S&, const K&, tumble::Wrench<S>&) const {}
+};
+
+/// The tumbling body in `scene`, with AddsNothing as its load where the scene has loads; with
+/// `event`, an event without action where R(0, 0) of the attitude crosses zero.
+template <class SceneT> void add_counted_body(SceneT& scene, bool event) {
+  using Body = RigidBody<tumble::EulerParameters>;
+  const auto b = scene.add(Body(tumble::test::tumbling_mass()), {.rotation = kR0, .omega = kOmega});
+  if constexpr (SceneT::has_loads) {
+    scene.add_load(b, AddsNothing{});
+  }
+  if (event) {
+    scene.add_event({.function =
+                         [b, &scene](double, const tumble::SceneStateView& s) {
+                           return tumble::rotation(scene, b, s)(0, 0);
+                         },
+                     .action = {}});
+  }
+}
+
+// Where no stage can call user code, the integrator counts a step's right-hand sides from the
+// pair's stage count (OdeintControlled::evaluations_per_try, evaluations_per_state_at) instead of
+// counting each stage. Against an independent count: the same body with a load that adds
+// nothing, whose stages count themselves. Both take the same steps (the load's zero wrench
+// changes no bit of the state here), so every statistic must agree: steps, rejections, events
+// (whose location steps again from the start, for Fehlberg and Cash-Karp), and the right-hand
+// sides; for Dormand-Prince without events the outputs come from its dense output too.
+TEST_CASE("explicit integrator: right-hand sides counted by the step as by each stage",
+          "[integrate][explicit_integrator]") {
+  std::vector<double> times;
+  for (int k = 1; k <= 40; ++k) {
+    times.push_back(0.5 * k);
+  }
+  for (const bool event : {false, true}) {
+    using Body = RigidBody<tumble::EulerParameters>;
+    using Plain = Scene<Bodies<Body>>;
+    using Loaded = Scene<Bodies<Body>, Loads<AddsNothing>>;
+    static_assert(!Plain::has_loads && Loaded::has_loads);
+    Plain plain;
+    Loaded loaded;
+    add_counted_body(plain, event);
+    add_counted_body(loaded, event);
+    for (const OdeintMethod method :
+         {OdeintMethod::fehlberg78, OdeintMethod::dopri5, OdeintMethod::cash_karp54}) {
+      INFO(name(method) << (event ? ", with an event" : ""));
+      OdeintIntegrator<Plain, 13> a(plain, 0.0, options(method, 1e-9));
+      OdeintIntegrator<Loaded, 13> b(loaded, 0.0, options(method, 1e-9));
+      double worst = 0.0;
+      std::vector<Eigen::VectorXd> ya;
+      a.integrate(times, [&](double, const SceneState& s) { ya.push_back(s.y); });
+      std::size_t k = 0;
+      b.integrate(times, [&](double, const SceneState& s) {
+        worst = std::max(worst, (s.y - ya[k++]).cwiseAbs().maxCoeff());
+      });
+      const tumble::OdeintStatistics sa = a.statistics(), sb = b.statistics();
+      report("%-20s %s: %ld steps, %ld rejected, %ld events, %ld rhs; states within %.1e\n",
+             name(method), event ? "event" : "no event", sa.steps, sa.rejected_steps, sa.events,
+             sa.rhs_evals, worst);
+      CHECK(worst == 0.0);
+      CHECK(sa.steps == sb.steps);
+      CHECK(sa.rejected_steps == sb.rejected_steps);
+      CHECK(sa.events == sb.events);
+      CHECK(sa.rhs_evals == sb.rhs_evals);
+      CHECK(sa.rhs_evals > sa.steps);
+      if (event) {
+        CHECK(sa.events >= 5);
+      }
+    }
+  }
+}
+
 // After the first steps (which size nothing: every buffer is sized at construction), advancing
 // allocates nothing with a fixed-size state, across chart switches and events.
 TEST_CASE("explicit integrator: no heap allocation per step", "[integrate][explicit_integrator]") {

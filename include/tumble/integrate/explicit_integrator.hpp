@@ -112,9 +112,13 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
                                   " must be finite and not before the current time " + num(t_));
     }
     run_ = detail::StepRun{.t_start = t_};
-    while (t_ < t_out) {
-      std::visit([&](auto& s) { step_with(s, t_out); }, stepper_);
-    }
+    std::visit(
+        [&](auto& s) {
+          while (t_ < t_out) {
+            step_with(s, t_out);
+          }
+        },
+        stepper_);
     sync();
   }
 
@@ -233,6 +237,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       const auto first = it;
       for (; it != end && *it <= t_new; ++it) {
         stepper.state_at(sys, *it, x_tmp_, x_old_, dxdt_old_, t_old, x_, dxdt_, t_new);
+        count_stages(S::evaluations_per_state_at);
         out_state_.y = map(x_tmp_);
         copy_bases(out_state_);
         project_onto_constraints(out_state_.y);
@@ -249,10 +254,18 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     sync();
   }
 
-  /// What Odeint calls for the stages of a step of the stepper S: x' = f(t, x), counted,
-  /// unchecked (see stage()); inlined into them for a scene without loads and joints.
+  /// Whether the scene's right-hand side calls user code (a load's or a joint's callable), which
+  /// may throw in a stage. Where it does not, nothing in a stage can throw: every try_step and
+  /// state_at evaluates all its stages, and the step counts them (count_stages) instead of each
+  /// stage counting itself and noting its time for a message. Those two stores in each stage
+  /// were 23k of the 844k instructions of the tumbling body's run to 1e-6 in the main job
+  /// (callgrind, docs/benchmarks/floors.md, 2026-12-05).
+  static constexpr bool kStagesCallUserCode = SceneT::has_loads || SceneT::has_joints;
+
+  /// What Odeint calls for the stages of a step of the stepper S: x' = f(t, x), unchecked (see
+  /// stage()); inlined into them for a scene whose right-hand side calls no user code.
   template <class S> struct System {
-    static constexpr bool inline_stages = !SceneT::has_loads && !SceneT::has_joints;
+    static constexpr bool inline_stages = !kStagesCallUserCode;
     OdeintIntegrator* self;
     [[gnu::always_inline]] void operator()(const State& x, State& dxdt, double t) const {
       self->template stage<S::fsal>(x, dxdt, t);
@@ -284,14 +297,23 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   /// had thrown). Checking each stage's rates just written instead cost 20 % of a run (they are
   /// read back while the stores are in flight); checking each input, 4 %.
   template <bool CheckInput> [[gnu::flatten]] void stage(const State& x, State& dxdt, double t) {
-    ++stats_.rhs_evals;
-    t_eval_ = t;  // for the message, should a load throw
+    if constexpr (kStagesCallUserCode) {
+      ++stats_.rhs_evals;
+      t_eval_ = t;  // for the message, should a load throw
+    }
     if constexpr (CheckInput) {
       if (!finite(x)) [[unlikely]] {
         stage_not_finite_ = true;
       }
     }
     tumble::rhs<FiniteCheck::by_caller>(*scene_, ws_, t, map(x), bases(), map(dxdt));
+  }
+
+  /// Counts n evaluations by stages that do not count themselves (kStagesCallUserCode).
+  void count_stages(long n) {
+    if constexpr (!kStagesCallUserCode) {
+      stats_.rhs_evals += n;
+    }
   }
 
   /// finite * 0 = 0, inf * 0 and NaN * 0 are NaN: the sum is 0 exactly when all are finite.
@@ -397,6 +419,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       try {
         if (!deriv_valid_) {
           stage<false>(x_, dxdt_, t_);
+          count_stages(1);
           if (!finite(dxdt_)) {
             evaluate(x_, dxdt_, t_);  // throws NonFiniteError, naming the body and the cause
           }
@@ -404,6 +427,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
         }
         stage_not_finite_ = false;
         ok = stepper.try_step(sys, x_, dxdt_, t, x_new_, dxdt_new_, h);
+        count_stages(S::evaluations_per_try);
         if (!finite(x_new_) || (S::fsal && !finite(dxdt_new_))) {  // see stage()
           stage_not_finite_ = true;
         }
@@ -507,6 +531,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       detail::guard_callbacks(kWho, "rhs()", t, t_, [&] {
         stepper.state_at(sys, t, out, x_old_, dxdt_old_, t_old, x_, dxdt_, t_new);
       });
+      count_stages(S::evaluations_per_state_at);
     };
     double t_first = t_new;
     const std::size_t first = detail::first_event(

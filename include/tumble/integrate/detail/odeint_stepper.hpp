@@ -146,6 +146,19 @@ template <class ErrorStepper> class OdeintControlled {
   /// Order of the solution that is propagated (for the initial step estimate).
   static constexpr int order = ErrorStepper::order_value;
 
+  /// Right-hand sides that one try_step evaluates, every one of them whether the step is
+  /// accepted or not (x' at the step's start is given; Dormand-Prince's x' at its end is its
+  /// last stage), and one state_at (the dense output evaluates none; a generic pair steps again
+  /// from the start). What the integrator counts when its stages do not count themselves.
+  static constexpr long evaluations_per_try = [] {
+    if constexpr (fsal) {
+      return 6L;  // Dormand-Prince 5(4): stages 2 to 7, the 7th at the step's end
+    } else {
+      return static_cast<long>(ErrorStepper::stage_count) - 1;  // 12 (Fehlberg), 5 (Cash-Karp)
+    }
+  }();
+  static constexpr long evaluations_per_state_at = dense ? 0 : evaluations_per_try;
+
  private:
   /// The step with every call in it inlined (flatten), the system's too, into each of the
   /// stepper's stage sums (13 for Fehlberg 7(8)), whatever the translation unit's inlining budget.
