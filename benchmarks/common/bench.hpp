@@ -315,6 +315,8 @@ void add_tumble_methods_c(std::vector<Method>& list);
 /// tumble's scenes under Boost.Odeint (OdeintIntegrator, work_precision/tumble_d.cpp; built when
 /// the target tumble::odeint exists, TUMBLE_BENCH_HAVE_TUMBLE_ODEINT)
 void add_tumble_methods_d(std::vector<Method>& list);
+/// The eight configurations after the headline, in the second unit of tumble_d.cpp.
+void add_tumble_methods_d_others(std::vector<Method>& list);
 
 /// The hand-written Euler-parameter [q; qdot] right-hand side (14 states, tumble's state form)
 /// in a plain tumble::Cvode with tumble's settings and constraint handling.

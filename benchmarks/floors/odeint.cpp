@@ -16,7 +16,8 @@
 // One kind per translation unit (TUMBLE_BENCH_ODEINT_FLOOR, set by main/tumble_bench.cmake in the
 // units it generates from this file): with all in one unit, GCC 12 -O3 reached its whole-unit
 // limit on inlining and left the 13-state floor's right-hand side out of its stepper. tumble's
-// nine configurations stay in one unit (work_precision/tumble_d.cpp says why).
+// headline configuration, which these floors are compared with, has a unit of its own too
+// (work_precision/tumble_d.cpp).
 
 #ifndef TUMBLE_BENCH_ODEINT_FLOOR
 #error "compiled through the units main/tumble_bench.cmake generates (TUMBLE_BENCH_ODEINT_FLOOR)"

@@ -48,9 +48,9 @@ add_executable(tumble_bench
 )
 # tumble_bench_units(<source> <macro> <count>): <source> compiled <count> times into tumble_bench,
 # through units generated in the build tree that define <macro> as 0 ... <count> - 1 and include
-# it: one kind of a floor per translation unit, so that GCC's whole-unit inlining limit
-# (--param inline-unit-growth), which many instantiations in one unit reach, leaves none of the
-# floor's stepper out of line (work_precision/tumble_d.cpp, which does reach it).
+# it: one kind of a floor, or tumble's headline configuration, per translation unit, so that
+# GCC's whole-unit inlining limit (--param inline-unit-growth), which many instantiations in one
+# unit reach, leaves none of their steppers out of line (work_precision/tumble_d.cpp).
 function(tumble_bench_units source macro count)
   get_filename_component(_stem ${source} NAME_WE)
   math(EXPR _last "${count} - 1")
@@ -92,8 +92,10 @@ target_link_libraries(tumble_bench PRIVATE ${_tumble_arkode} Boost::headers)
 if(TARGET tumble::odeint)
   # The mechanisms' study (e) runs the front door and OdeintIntegrator beside CVODE's BDF: one
   # translation unit per problem, each instantiating its scene type (compiler memory).
+  # work_precision/tumble_d.cpp, tumble's scenes under OdeintIntegrator: the headline
+  # configuration in a unit of its own, as the floors it is compared with; the others in one.
+  tumble_bench_units(work_precision/tumble_d.cpp TUMBLE_BENCH_ODEINT_GROUP 2)
   target_sources(tumble_bench PRIVATE
-    work_precision/tumble_d.cpp   # method: tumble's scenes under OdeintIntegrator
     mechanisms/pendulum.cpp       # mechanism: IFToMM A01, the simple pendulum
     mechanisms/four_bar.cpp       # mechanism: IFToMM A02, the N-four-bar
     mechanisms/andrews.cpp        # mechanism: IFToMM A03, Andrews' squeezing mechanism

@@ -128,6 +128,18 @@ template <class F> void run_cycling(benchmark::State& state, F&& f) {
   }
 }
 
+/// run_cycling with every call f makes inlined into the loop (`flatten`), whatever GCC's inlining
+/// budget in the unit: for tumble's qddot cases, which table (a) compares with the hand-written
+/// floor, so that tumble is timed inlined as the floor is (GCC 12 refused to inline
+/// `RigidBody::accelerations_impl` by its size estimate, "max-inline-insns-single", and timed a
+/// call; docs/benchmarks/floors.md, 2026-12-05). The floor stays in run_cycling: flattened it
+/// took as long wrench given (33.9-36.2 against 30.8-40.0 ns) and longer with loads (56.9-58.4
+/// against 37.3-49.5 ns), and the faster form is the floor. Only for these cases: flattening
+/// every case of a unit took its compile from 1.5 to 10.5 minutes.
+template <class F> [[gnu::flatten]] void run_cycling_inlined(benchmark::State& state, F&& f) {
+  run_cycling(state, std::forward<F>(f));
+}
+
 /// Registers `fn` under `name`, timed in ns.
 template <class F> void add(const std::string& name, F&& fn) {
   benchmark::RegisterBenchmark(name.c_str(), std::forward<F>(fn))->Unit(benchmark::kNanosecond);

@@ -50,14 +50,14 @@ template <class P, ReferencePoint Ref> void register_body() {
   add("qddot" + suffix, [](benchmark::State& st) {
     static const States<Body> s;
     const Body body(mass_properties<Ref>());
-    run_cycling(st,
-                [&](std::size_t i) { return body.accelerations(s.q[i], s.qdot[i], s.wrench[i]); });
+    run_cycling_inlined(
+        st, [&](std::size_t i) { return body.accelerations(s.q[i], s.qdot[i], s.wrench[i]); });
   });
   add("qddot_loads" + suffix, [](benchmark::State& st) {
     static const States<Body> s;
     const Body body(mass_properties<Ref>());
     const LoadSet l;
-    run_cycling(st, [&](std::size_t i) {
+    run_cycling_inlined(st, [&](std::size_t i) {
       return tumble::accelerations(body, 0.0, s.q[i], s.qdot[i], l.gravity, l.force, l.moment);
     });
   });

@@ -6,14 +6,20 @@
 // modified Rodrigues parameters. What a run does between steps (projection of p, chart
 // switches, output times reached by stepping to them) is the integrator's; nothing is tuned here.
 //
-// The nine configurations share this one translation unit, which takes GCC 12 -O3 past its
-// whole-unit inlining limit (`--param inline-unit-growth`: -fopt-info-inline-missed names it
-// 1,788 times, Odeint's stage sums and controller among them). One unit per configuration
-// (2026-12-02, nineteenth session) took 840 CPU s to compile against 165 and moved the headline
-// configuration's times by nothing measurable (tumbling body and spinner, 1e-6 to 1e-12, best
-// of 90 interleaved runs: within 5 %, both ways); its instruction count rose by 3 %. So the
-// limit leaves tumble's ratio to its floor, if anything, conservative; the floors, whose units
-// are cheap, get one unit per kind (floors/odeint.cpp).
+// Two translation units (TUMBLE_BENCH_ODEINT_GROUP, set by main/tumble_bench.cmake): the
+// headline configuration, Fehlberg 7(8) with Euler parameters on [q; v; omega] ("Odeint F78 EP
+// quasi"), alone in unit 0, as a user's program with one scene type, and as each kind of the
+// floors it is compared with (floors/odeint.cpp) is compiled; the other eight in unit 1. In one
+// unit with the eight, GCC 12 -O3 reaches its whole-unit inlining limit (`--param
+// inline-unit-growth`: -fopt-info-inline-missed names it 1,788 times, Odeint's stage sums and
+// controller among them) and the headline ran 1.16-1.25x its floor in the main job's harness,
+// 1.10-1.20x in a unit of its own, pinned, alternating the two builds (2026-12-05,
+// twenty-fourth session; docs/benchmarks/floors.md). The eight others stay together: one unit
+// per configuration took 840 CPU s to compile against 165 (2026-12-02, nineteenth session).
+
+#ifndef TUMBLE_BENCH_ODEINT_GROUP
+#error "compiled through the units main/tumble_bench.cmake generates (TUMBLE_BENCH_ODEINT_GROUP)"
+#endif
 
 #include <exception>
 #include <string>
@@ -92,12 +98,18 @@ Method odeint_method(Scheme scheme, const std::string& set, bool quick) {
 
 }  // namespace
 
+#if TUMBLE_BENCH_ODEINT_GROUP == 0
 void add_tumble_methods_d(std::vector<Method>& list) {
+  list.push_back(
+      odeint_method<EulerParameters, StateForm::quasi_velocities>(Scheme::rkf78, "EP", true));
+  add_tumble_methods_d_others(list);
+}
+#else
+void add_tumble_methods_d_others(std::vector<Method>& list) {
   using EP = EulerParameters;
   using MRP = ModifiedRodriguesParameters;
   constexpr StateForm quasi = StateForm::quasi_velocities;
   constexpr StateForm generalized = StateForm::generalized;
-  list.push_back(odeint_method<EP, quasi>(Scheme::rkf78, "EP", true));
   list.push_back(odeint_method<EP, quasi, Translation::free>(Scheme::rkf78, "EP", true));
   list.push_back(odeint_method<EP, quasi>(Scheme::dopri5, "EP", true));
   list.push_back(odeint_method<MRP, quasi>(Scheme::rkf78, "MRP", true));
@@ -107,5 +119,6 @@ void add_tumble_methods_d(std::vector<Method>& list) {
   list.push_back(odeint_method<MRP, generalized>(Scheme::rkf78, "MRP", false));
   list.push_back(odeint_method<MRP, generalized>(Scheme::dopri5, "MRP", false));
 }
+#endif
 
 }  // namespace tumble::bench
