@@ -107,6 +107,16 @@ if(TARGET tumble::odeint)
     peers/exudyn_mechanisms.cpp)  # mechanisms: Exudyn's solvers on them (when installed)
   target_link_libraries(tumble_bench PRIVATE tumble::odeint)
   target_compile_definitions(tumble_bench PRIVATE TUMBLE_BENCH_HAVE_TUMBLE_ODEINT=1)
+  # tumble_explicit_check: the explicit path against its Fehlberg 7(8) floor timed a second way,
+  # outside the main job's harness, both in one unit as in a user's program
+  # (floors/explicit_check.cpp).
+  add_executable(tumble_explicit_check floors/explicit_check.cpp)
+  target_link_libraries(tumble_explicit_check PRIVATE tumble::cvode tumble::odeint Boost::headers
+                        tumble_project_options)
+  target_include_directories(tumble_explicit_check PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
+  if(TUMBLE_BENCH_NATIVE)
+    target_compile_options(tumble_explicit_check PRIVATE -march=native)
+  endif()
 else()
   message(STATUS "tumble_bench: without tumble::odeint (OdeintIntegrator's runs are skipped)")
 endif()
