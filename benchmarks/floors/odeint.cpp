@@ -27,17 +27,19 @@
 #include <array>
 #include <cmath>
 #include <exception>
-#include <stdexcept>
 #include <vector>
 
 // GCC 12 -O3 reports Odeint's copy of a freshly built stepper (std::array members, filled before
-// use) as -Wmaybe-uninitialized inside the Boost headers: a false positive, silenced for this
-// file only (the location it reports is in the header, so the pragma precedes the include).
+// use) as -Wmaybe-uninitialized inside the Boost headers, or as -Wuninitialized where the copy is
+// inlined into floors/fehlberg_loop.hpp: a false positive, silenced for this file only (the
+// location it reports is in the header, so the pragma precedes the include).
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#pragma GCC diagnostic ignored "-Wuninitialized"
 #endif
 #include <boost/numeric/odeint.hpp>
 
+#include "floors/fehlberg_loop.hpp"
 #include "floors/rhs.hpp"
 
 namespace tumble::bench {
@@ -46,13 +48,6 @@ namespace {
 namespace odeint = boost::numeric::odeint;
 
 enum class OdeintKind { rkf78, rkf78_loop, dopri5 };
-
-/// Odeint stops after this many steps between two output times (its default, 500, is too few
-/// for the fast spinner at tight tolerances).
-constexpr long kMaxSteps = 100'000'000;
-/// The loop floor stops after this many rejected attempts in a row (Odeint's failed_step_checker
-/// in integrate_times: 500).
-constexpr long kMaxFailedSteps = 500;
 
 /// The first step for a method of order `order` at x with x' = f0 (Hairer, Norsett and Wanner,
 /// Sec. II.4: an Euler step of size h0, then the second derivative from it), with one more
@@ -120,42 +115,14 @@ Run odeint_floor(const Problem& p, const MethodSetting& c, const Timing& timing)
         auto stepper =
             odeint::make_controlled(c.tol, c.tol, odeint::runge_kutta_fehlberg78<State>());
         steps = odeint::integrate_times(stepper, counted, x, grid.begin(), grid.end(), dt0, observe,
-                                        odeint::max_step_checker(kMaxSteps));
+                                        odeint::max_step_checker(kFloorMaxSteps));
       } else if constexpr (Kind == OdeintKind::rkf78_loop) {
-        auto stepper =
-            odeint::make_controlled(c.tol, c.tol, odeint::runge_kutta_fehlberg78<State>());
         observe(x, 0.0);
-        State trial{};
-        double t = 0, dt = dt0;
-        long failed = 0;
-        for (std::size_t i = 1; i < grid.size(); ++i) {
-          const double t_out = grid[i];
-          for (long n = 0; t < t_out; ++n) {
-            if (n == kMaxSteps) {  // as Odeint's max_step_checker in integrate_times
-              throw std::runtime_error("the Fehlberg 7(8) floor: too many steps to an output");
-            }
-            const bool last = dt >= t_out - t;  // the step ends on the output time
-            double t_try = t, h = last ? t_out - t : dt;
-            if (stepper.try_step(counted, x, dxdt, t_try, trial, h) == odeint::success) {
-              ++steps;
-              failed = 0;
-              x = trial;
-              t = last ? t_out : t_try;
-              counted(x, dxdt, t);
-              dt = std::max(dt, h);  // h: the controller's next step (integrate_times' rule)
-            } else {
-              if (++failed > kMaxFailedSteps) {
-                throw std::runtime_error("the Fehlberg 7(8) floor: too many failed steps in a row");
-              }
-              dt = h;
-            }
-          }
-          observe(x, t);
-        }
+        steps = fehlberg78_loop(c.tol, counted, x, dxdt, dt0, p.times, observe);
       } else {
         auto stepper = odeint::make_dense_output(c.tol, c.tol, odeint::runge_kutta_dopri5<State>());
         steps = odeint::integrate_times(stepper, counted, x, grid.begin(), grid.end(), dt0, observe,
-                                        odeint::max_step_checker(kMaxSteps));
+                                        odeint::max_step_checker(kFloorMaxSteps));
       }
       run.steps = static_cast<long>(steps);
       run.rhs_evals = f.evals;

@@ -110,9 +110,10 @@ if(TARGET tumble::odeint)
   # tumble_explicit_check: the explicit path against its Fehlberg 7(8) floor timed a second way,
   # outside the main job's harness, both in one unit as in a user's program
   # (floors/explicit_check.cpp).
-  add_executable(tumble_explicit_check floors/explicit_check.cpp)
+  add_executable(tumble_explicit_check floors/explicit_check.cpp
+                                       work_precision/problems.cpp)  # the main job's problems
   target_link_libraries(tumble_explicit_check PRIVATE tumble::cvode tumble::odeint Boost::headers
-                        tumble_project_options)
+                        tumble_test_support tumble_project_options)
   target_include_directories(tumble_explicit_check PRIVATE ${CMAKE_CURRENT_SOURCE_DIR})
   if(TUMBLE_BENCH_NATIVE)
     target_compile_options(tumble_explicit_check PRIVATE -march=native)
