@@ -118,6 +118,10 @@ struct AutoStatistics {
   long chart_switches = 0;
   long projections = 0;
   long events = 0;
+  /// The explicit path's steps of a mechanism tested at a tolerance looser than asked, near a
+  /// singular position, and the loosest (OdeintStatistics).
+  long relaxed_steps = 0;
+  double loosest_tolerance = 0.0;
   std::vector<MethodChoice> choices;
 
   /// The method running now.
@@ -299,6 +303,10 @@ template <class SceneT, int N = Eigen::Dynamic> class AutoIntegrator {
     to.chart_switches += s.chart_switches - base.chart_switches;
     to.projections += s.projections - base.projections;
     to.events += s.events - base.events;
+    if constexpr (requires { s.relaxed_steps; }) {
+      to.relaxed_steps += s.relaxed_steps - base.relaxed_steps;
+      to.loosest_tolerance = std::max(to.loosest_tolerance, s.loosest_tolerance);
+    }
   }
 
   /// The integrator's options with the shared ones (integrate/common.hpp) of options_.

@@ -179,6 +179,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     }
     t_ = t;
     window_ = detail::StepRun{.t_start = t};
+    window_relaxed_ = 0;
+    relaxed_windows_ = 0;
     h_ = options_.initial_step > 0.0 ? options_.initial_step : initial_step();
     events_at(t_, x_, ev_old_);
     sync();
@@ -346,6 +348,10 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   bool after_change(bool& recentered) {
     Eigen::Map<Vec> y = map(x_);
     const bool changed = project_onto_constraints(y);
+    if constexpr (SceneT::has_joints) {  // the accuracy the next step's evaluations allow
+      const double floor = detail::attainable_tolerance(ws_.joints());
+      tolerance_floor_ = floor > options_.rtol ? floor : 0.0;
+    }
     stats_.projections += changed ? 1 : 0;
     recentered = recenter_charts(*scene_, y, std::span<Matrix3<double>>(base_),
                                  [this](int id) { ++switches_[static_cast<std::size_t>(id)]; }) > 0;
@@ -426,6 +432,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
           deriv_valid_ = true;
         }
         stage_not_finite_ = false;
+        if constexpr (SceneT::has_joints) {
+          stepper.raise_tolerances_to(tolerance_floor_);
+        }
         ok = stepper.try_step(sys, x_, dxdt_, t, x_new_, dxdt_new_, h);
         count_stages(S::evaluations_per_try);
         if (!finite(x_new_) || (S::fsal && !finite(dxdt_new_))) {  // see stage()
@@ -475,6 +484,13 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       ++stats_.steps;
       ++run_.accepted;
       ++window_.accepted;
+      if constexpr (SceneT::has_joints) {
+        if (tolerance_floor_ > 0.0) [[unlikely]] {
+          ++stats_.relaxed_steps;
+          ++window_relaxed_;
+          stats_.loosest_tolerance = std::max(stats_.loosest_tolerance, tolerance_floor_);
+        }
+      }
       // Stepped to t_out exactly: keep the controller's longer suggestion for the next step.
       const double t_new = to_end ? t_out : t;
       h_ = to_end ? std::max(h, h_) : h;
@@ -580,6 +596,17 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   /// throws StiffSceneError, or starts the next window) or, `spent`, this advance's, whose step
   /// budget is spent (throws, saying whether the scene looks stiff).
   void stiffness_test(double t_out, bool spent = false) {
+    if constexpr (SceneT::has_joints) {
+      // Steps relaxed near a singular position of the joints: there the rejections and the
+      // Jacobian's modulus measure the constraint solve's conditioning, not stiffness. So many
+      // such windows in a row that the run makes no way get the verdict (never a hang).
+      if (!spent && window_relaxed_ > 0 && ++relaxed_windows_ <= kRelaxedWindows) {
+        window_ = detail::StepRun{.t_start = t_};
+        window_relaxed_ = 0;
+        return;
+      }
+      relaxed_windows_ = 0;
+    }
     double h_rho = 0.0;
     const bool stiff = detail::looks_stiff(
         spent ? run_ : window_, t_, [this] { return spectral_radius(); }, h_rho);
@@ -590,6 +617,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       detail::throw_stiff_window(window_, t_, h_rho, t_out);
     }
     window_ = detail::StepRun{.t_start = t_};
+    window_relaxed_ = 0;
   }
 
   /// Copies the current state into state_; no allocation.
@@ -608,12 +636,17 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   SceneWorkspace<SceneT> ws_;
   Stepper stepper_;
   State x_{}, dxdt_{}, x_old_{}, dxdt_old_{}, x_new_{}, dxdt_new_{}, x_tmp_{};
-  bool deriv_valid_ = false;        ///< dxdt_ is x' at x_
-  bool stage_not_finite_ = false;   ///< some stage of the current trial step was not finite
-  detail::StepRun run_;             ///< this advance (or output interval): the step budget
-  detail::StepRun window_;          ///< the attempts since the last stiffness test
-  double t_ = 0.0, h_ = 0.0;        ///< time, next step size
-  double t_eval_ = 0.0;             ///< the time of the last evaluation of the scene
+  bool deriv_valid_ = false;       ///< dxdt_ is x' at x_
+  bool stage_not_finite_ = false;  ///< some stage of the current trial step was not finite
+  detail::StepRun run_;            ///< this advance (or output interval): the step budget
+  detail::StepRun window_;         ///< the attempts since the last stiffness test
+  double t_ = 0.0, h_ = 0.0;       ///< time, next step size
+  double t_eval_ = 0.0;            ///< the time of the last evaluation of the scene
+  double tolerance_floor_ = 0.0;   ///< > 0: the next step's error test asks no less (joints)
+  long window_relaxed_ = 0;        ///< steps of window_ accepted with a tolerance floor
+  int relaxed_windows_ = 0;        ///< windows in a row that drew no verdict for them
+  /// At most this many stiffness windows in a row draw no verdict for their relaxed steps.
+  static constexpr int kRelaxedWindows = 8;
   CacheLineVector<double> g_, g0_;  ///< chart roots at a step's end and start
   std::vector<double> deep_;        ///< per chart body: roots below this reject a step
   CacheLineVector<double> ev_old_;  ///< event functions at the step's start

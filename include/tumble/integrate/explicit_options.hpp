@@ -73,6 +73,12 @@ struct OdeintStatistics {
   long chart_switches = 0;  ///< re-centerings and MRP shadow switches
   long projections = 0;     ///< projections of Euler parameters onto |p| = 1 (one per step)
   long events = 0;          ///< user events located and acted on
+  /// Accepted steps of a mechanism whose error test asked less than rtol and atol, because the
+  /// constraint solve at the step's start was too ill-conditioned (near a singular position) to
+  /// give the right-hand side to that accuracy, and the largest tolerance they were tested at
+  /// (0 when none was; docs/mechanisms.md, "Singular positions").
+  long relaxed_steps = 0;
+  double loosest_tolerance = 0.0;
 };
 static_assert(IntegratorStatisticsLike<OdeintStatistics>);
 static_assert(IntegratorOptionsLike<OdeintOptions>);

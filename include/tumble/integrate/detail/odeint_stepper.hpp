@@ -11,6 +11,7 @@
 // Only Odeint's steppers and its step-size controller are used; the loop around them (output
 // times, charts, projection, events, budgets) is the integrator's.
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -56,7 +57,8 @@ using OdeintState = std::conditional_t<N == Eigen::Dynamic, CacheLineVector<doub
 /// Odeint's error test with an absolute tolerance per entry (or one for all): the largest of
 /// |err_i| / (atol_i + rtol (|x_i| + |h| |x'_i|)) over i, Odeint's default_error_checker with
 /// a_x = a_dxdt = 1 but for atol_i; in one pass, with a NaN error counted as infinite (a
-/// rejected step), where the default's maximum would pass it over.
+/// rejected step), where the default's maximum would pass it over. A floor > 0 raises rtol and
+/// every atol_i to at least the floor (OdeintControlled::raise_tolerances_to).
 template <class Value, class Algebra, class Operations> class ToleranceChecker {
  public:
   using value_type = Value;
@@ -65,8 +67,8 @@ template <class Value, class Algebra, class Operations> class ToleranceChecker {
 
   /// atol_entries: nullptr for the one value atol, else atol_i for each entry (not owned).
   explicit ToleranceChecker(Value atol = 1e-8, Value rtol = 1e-8,
-                            const Value* atol_entries = nullptr)
-      : atol_(atol), rtol_(rtol), entries_(atol_entries) {}
+                            const Value* atol_entries = nullptr, Value floor = 0)
+      : atol_(atol), rtol_(rtol), entries_(atol_entries), floor_(floor) {}
 
   template <class State, class Deriv, class Err, class Time>
   Value error(Algebra& /*algebra*/, const State& x_old, const Deriv& dxdt_old, Err& x_err,
@@ -75,7 +77,17 @@ template <class Value, class Algebra, class Operations> class ToleranceChecker {
     const Value adt = abs(static_cast<Value>(dt));
     const std::size_t n = x_err.size();
     Value worst = 0;
-    if (entries_ == nullptr) {
+    if (floor_ > 0) [[unlikely]] {
+      const Value rtol = std::max(rtol_, floor_);
+      for (std::size_t i = 0; i < n; ++i) {
+        const Value atol = std::max(entries_ == nullptr ? atol_ : entries_[i], floor_);
+        const Value e = abs(x_err[i]) / (atol + rtol * (abs(x_old[i]) + adt * abs(dxdt_old[i])));
+        worst = e > worst ? e : worst;
+        if (e != e) {
+          return std::numeric_limits<Value>::infinity();
+        }
+      }
+    } else if (entries_ == nullptr) {
       for (std::size_t i = 0; i < n; ++i) {
         const Value e = abs(x_err[i]) / (atol_ + rtol_ * (abs(x_old[i]) + adt * abs(dxdt_old[i])));
         worst = e > worst ? e : worst;
@@ -99,6 +111,7 @@ template <class Value, class Algebra, class Operations> class ToleranceChecker {
  private:
   Value atol_, rtol_;
   const Value* entries_;
+  Value floor_;
 };
 
 /// One embedded pair under Odeint's controller (controlled_runge_kutta) with the per-entry
@@ -117,7 +130,21 @@ template <class ErrorStepper> class OdeintControlled {
 
   /// atol_entries: nullptr for the one value atol, else atol_i per entry (must outlive this).
   OdeintControlled(double atol, double rtol, const double* atol_entries = nullptr)
-      : controlled_(Checker(atol, rtol, atol_entries)) {}
+      : atol_(atol),
+        rtol_(rtol),
+        entries_(atol_entries),
+        controlled_(Checker(atol, rtol, atol_entries)) {}
+
+  /// From the next try_step on, the error test asks for no less than `floor` (rtol and every
+  /// atol_i raised to it; 0: the tolerances as given). A new floor rebuilds the controlled
+  /// stepper (Odeint's keeps its error checker by value): call it only between a step's dense
+  /// outputs and the next try_step, which the stepper's stage buffers (recreated here) serve.
+  void raise_tolerances_to(double floor) {
+    if (floor != floor_) {
+      floor_ = floor;
+      controlled_ = Controlled(Checker(atol_, rtol_, entries_, floor));
+    }
+  }
 
   /// Sys::inline_stages: the system inlined into every stage of the step (try_step_inlined).
   template <class Sys, class State>
@@ -187,6 +214,9 @@ template <class ErrorStepper> class OdeintControlled {
     return r == odeint::success;
   }
 
+  double atol_, rtol_;
+  const double* entries_;
+  double floor_ = 0.0;
   Controlled controlled_;
 };
 
