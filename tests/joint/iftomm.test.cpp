@@ -69,10 +69,10 @@ TEST_CASE("IFToMM A01: the simple pendulum against Jacobi's sn", "[joint][iftomm
 
 /// Runs the N-four-bar to t_end with integrator I at tol and returns the largest crank-angle
 /// error against the minimal-coordinate model, with the energy and the closure checked; the
-/// integrator's statistics into `stats` when given.
+/// integrator's statistics into `stats` when given; `window` > 0: its stiffness window.
 template <int N, class I>
 double n_four_bar_error(bool hanging, double t_end, double tol,
-                        typename I::Statistics* stats = nullptr) {
+                        typename I::Statistics* stats = nullptr, long window = 0) {
   NFourBar m(N, hanging);
   SceneState s = m.scene.initial_state();
   const AssemblyReport rep = assemble(m.scene, s);
@@ -87,6 +87,9 @@ double n_four_bar_error(bool hanging, double t_end, double tol,
   typename I::Options opt;
   opt.rtol = tol;
   opt.atol = tol;
+  if (window > 0) {
+    opt.stiffness_window = window;
+  }
   I integrator(m.scene, 0.0, s, opt);
   integrator.integrate(times, [&](double t, const SceneState& x) {
     // The first crank's angle from +y towards +x, from its body x axis (R x = (sin, cos)).
@@ -158,6 +161,16 @@ TEMPLATE_TEST_CASE_SIG("IFToMM A02: the N-four-bar through its singular position
                         << st.loosest_tolerance);
   CHECK(st.relaxed_steps > 0);
   CHECK(st.loosest_tolerance <= std::sqrt(std::numeric_limits<double>::epsilon()));
+}
+
+// At most 8 stiffness windows in a row with relaxed steps draw no verdict, counted within one
+// output interval: counted over the whole run, windows of 50 attempts reached the cap on the
+// 2-four-bar at 1e-12, the verdict read stiffness and the run stopped at 4.60 s (measured).
+TEST_CASE("IFToMM A02: short stiffness windows through the singular positions", "[joint][iftomm]") {
+  using I = OdeintIntegrator<NFourBar::SceneT>;
+  OdeintStatistics st;
+  CHECK(n_four_bar_error<2, I>(false, 10.0, 1e-12, &st, 50) <= 1e-7);
+  CHECK(st.relaxed_steps > 0);
 }
 
 // Away from the singular positions (hanging) the solve is well-conditioned (the retained rows'

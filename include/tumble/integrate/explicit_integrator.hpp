@@ -112,6 +112,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
                                   " must be finite and not before the current time " + num(t_));
     }
     run_ = detail::StepRun{.t_start = t_};
+    relaxed_windows_ = 0;
     std::visit(
         [&](auto& s) {
           while (t_ < t_out) {
@@ -247,9 +248,11 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       }
       if (it != first) {
         run_ = detail::StepRun{.t_start = t_new};  // the step budget counts per output interval
+        relaxed_windows_ = 0;
       }
     };
     run_ = detail::StepRun{.t_start = t_};
+    relaxed_windows_ = 0;
     while (t_ < t_last) {
       step_with(stepper, t_last, outputs);
     }
@@ -599,7 +602,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     if constexpr (SceneT::has_joints) {
       // Steps relaxed near a singular position of the joints: there the rejections and the
       // Jacobian's modulus measure the constraint solve's conditioning, not stiffness. So many
-      // such windows in a row that the run makes no way get the verdict (never a hang).
+      // such windows in a row within one output interval (or advance) that the run makes no way
+      // get the verdict (never a hang).
       if (!spent && window_relaxed_ > 0 && ++relaxed_windows_ <= kRelaxedWindows) {
         window_ = detail::StepRun{.t_start = t_};
         window_relaxed_ = 0;
@@ -645,7 +649,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   double tolerance_floor_ = 0.0;   ///< > 0: the next step's error test asks no less (joints)
   long window_relaxed_ = 0;        ///< steps of window_ accepted with a tolerance floor
   int relaxed_windows_ = 0;        ///< windows in a row that drew no verdict for them
-  /// At most this many stiffness windows in a row draw no verdict for their relaxed steps.
+  /// At most this many stiffness windows in a row, within one output interval or advance, draw
+  /// no verdict for their relaxed steps.
   static constexpr int kRelaxedWindows = 8;
   CacheLineVector<double> g_, g0_;  ///< chart roots at a step's end and start
   std::vector<double> deep_;        ///< per chart body: roots below this reject a step
