@@ -112,7 +112,6 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
                                   " must be finite and not before the current time " + num(t_));
     }
     run_ = detail::StepRun{.t_start = t_};
-    relaxed_windows_ = 0;
     std::visit(
         [&](auto& s) {
           while (t_ < t_out) {
@@ -180,8 +179,6 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     }
     t_ = t;
     window_ = detail::StepRun{.t_start = t};
-    window_relaxed_ = 0;
-    relaxed_windows_ = 0;
     h_ = options_.initial_step > 0.0 ? options_.initial_step : initial_step();
     events_at(t_, x_, ev_old_);
     sync();
@@ -248,11 +245,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       }
       if (it != first) {
         run_ = detail::StepRun{.t_start = t_new};  // the step budget counts per output interval
-        relaxed_windows_ = 0;
       }
     };
     run_ = detail::StepRun{.t_start = t_};
-    relaxed_windows_ = 0;
     while (t_ < t_last) {
       step_with(stepper, t_last, outputs);
     }
@@ -490,7 +485,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       if constexpr (SceneT::has_joints) {
         if (tolerance_floor_ > 0.0) [[unlikely]] {
           ++stats_.relaxed_steps;
-          ++window_relaxed_;
+          ++window_.relaxed;
           stats_.loosest_tolerance = std::max(stats_.loosest_tolerance, tolerance_floor_);
         }
       }
@@ -599,17 +594,11 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   /// throws StiffSceneError, or starts the next window) or, `spent`, this advance's, whose step
   /// budget is spent (throws, saying whether the scene looks stiff).
   void stiffness_test(double t_out, bool spent = false) {
-    if constexpr (SceneT::has_joints) {
-      // Steps relaxed near a singular position of the joints: there the rejections and the
-      // Jacobian's modulus measure the constraint solve's conditioning, not stiffness. So many
-      // such windows in a row within one output interval (or advance) that the run makes no way
-      // get the verdict (never a hang).
-      if (!spent && window_relaxed_ > 0 && ++relaxed_windows_ <= kRelaxedWindows) {
+    if constexpr (SceneT::has_joints) {  // relaxed steps near a singular position
+      if (!spent && detail::excused_window(window_, run_)) {
         window_ = detail::StepRun{.t_start = t_};
-        window_relaxed_ = 0;
         return;
       }
-      relaxed_windows_ = 0;
     }
     double h_rho = 0.0;
     const bool stiff = detail::looks_stiff(
@@ -621,7 +610,6 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       detail::throw_stiff_window(window_, t_, h_rho, t_out);
     }
     window_ = detail::StepRun{.t_start = t_};
-    window_relaxed_ = 0;
   }
 
   /// Copies the current state into state_; no allocation.
@@ -640,18 +628,13 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   SceneWorkspace<SceneT> ws_;
   Stepper stepper_;
   State x_{}, dxdt_{}, x_old_{}, dxdt_old_{}, x_new_{}, dxdt_new_{}, x_tmp_{};
-  bool deriv_valid_ = false;       ///< dxdt_ is x' at x_
-  bool stage_not_finite_ = false;  ///< some stage of the current trial step was not finite
-  detail::StepRun run_;            ///< this advance (or output interval): the step budget
-  detail::StepRun window_;         ///< the attempts since the last stiffness test
-  double t_ = 0.0, h_ = 0.0;       ///< time, next step size
-  double t_eval_ = 0.0;            ///< the time of the last evaluation of the scene
-  double tolerance_floor_ = 0.0;   ///< > 0: the next step's error test asks no less (joints)
-  long window_relaxed_ = 0;        ///< steps of window_ accepted with a tolerance floor
-  int relaxed_windows_ = 0;        ///< windows in a row that drew no verdict for them
-  /// At most this many stiffness windows in a row, within one output interval or advance, draw
-  /// no verdict for their relaxed steps.
-  static constexpr int kRelaxedWindows = 8;
+  bool deriv_valid_ = false;        ///< dxdt_ is x' at x_
+  bool stage_not_finite_ = false;   ///< some stage of the current trial step was not finite
+  detail::StepRun run_;             ///< this advance (or output interval): the step budget
+  detail::StepRun window_;          ///< the attempts since the last stiffness test
+  double t_ = 0.0, h_ = 0.0;        ///< time, next step size
+  double t_eval_ = 0.0;             ///< the time of the last evaluation of the scene
+  double tolerance_floor_ = 0.0;    ///< > 0: the next step's error test asks no less (joints)
   CacheLineVector<double> g_, g0_;  ///< chart roots at a step's end and start
   std::vector<double> deep_;        ///< per chart body: roots below this reject a step
   CacheLineVector<double> ev_old_;  ///< event functions at the step's start

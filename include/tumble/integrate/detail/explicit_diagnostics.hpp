@@ -32,12 +32,32 @@ struct StepRun {
   long attempts = 0;  ///< step attempts
   long accepted = 0;  ///< accepted steps
   long rejected = 0;  ///< of which failed Odeint's error test
+  long relaxed = 0;   ///< accepted with the error test relaxed (a mechanism, near a singularity)
+  int excused = 0;    ///< stiffness windows in a row that drew no verdict (excused_window)
 
   /// The mean accepted step from t_start to t (0 before the first).
   [[nodiscard]] double mean_step(double t) const {
     return accepted > 0 ? (t - t_start) / static_cast<double>(accepted) : 0.0;
   }
 };
+
+/// At most this many stiffness windows in a row within one run (an output interval, or an
+/// advance) draw no verdict for their relaxed steps.
+inline constexpr int kRelaxedWindows = 8;
+
+/// Whether the stiffness window `window`, within `run`, draws no verdict: it has steps whose error
+/// test was relaxed near a singular position of a mechanism's joints, where the rejections and
+/// the Jacobian's modulus measure the constraint solve's conditioning, not stiffness. Counted in
+/// run.excused, so that a run held at a crossing, making no way, still gets the verdict after
+/// kRelaxedWindows such windows (never a hang).
+inline bool excused_window(const StepRun& window, StepRun& run) {
+  if (window.relaxed > 0 && run.excused < kRelaxedWindows) {
+    ++run.excused;
+    return true;
+  }
+  run.excused = 0;
+  return false;
+}
 
 /// True when the attempts of r, which reached t, look like those of an explicit method on a stiff
 /// scene: at least kStiffRejections of them failed the error test and the mean step h has
