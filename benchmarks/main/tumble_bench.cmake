@@ -85,6 +85,22 @@ endif()
 if(NOT _tumble_arkode)
   message(FATAL_ERROR "tumble_bench: SUNDIALS' ARKODE not found (Debian: libsundials-dev)")
 endif()
+# tumble_bench_sundials_module(<module> <out>): the SUNDIALS library <module> (ida, sunlinsolklu,
+# ...) as a target or a path in <out>, as ARKODE's above; empty when not found.
+function(tumble_bench_sundials_module module out)
+  foreach(_cand SUNDIALS::${module} SUNDIALS::${module}_shared SUNDIALS::${module}_static)
+    if(TARGET ${_cand})
+      set(${out} ${_cand} PARENT_SCOPE)
+      return()
+    endif()
+  endforeach()
+  find_library(TUMBLE_SUNDIALS_${module}_LIBRARY NAMES sundials_${module})
+  if(TUMBLE_SUNDIALS_${module}_LIBRARY)
+    set(${out} ${TUMBLE_SUNDIALS_${module}_LIBRARY} PARENT_SCOPE)
+  else()
+    set(${out} "" PARENT_SCOPE)
+  endif()
+endfunction()
 find_package(Boost 1.65 REQUIRED)  # Boost.Odeint, header-only (Debian: libboost-dev)
 target_link_libraries(tumble_bench PRIVATE ${_tumble_arkode} Boost::headers)
 # tumble's own explicit integrator (OdeintIntegrator) on tumble's scenes, when the library
@@ -107,6 +123,33 @@ if(TARGET tumble::odeint)
     peers/exudyn_mechanisms.cpp)  # mechanisms: Exudyn's solvers on them (when installed)
   target_link_libraries(tumble_bench PRIVATE tumble::odeint)
   target_compile_definitions(tumble_bench PRIVATE TUMBLE_BENCH_HAVE_TUMBLE_ODEINT=1)
+  # A05 also runs the study of a stabilized index-2 formulation in SUNDIALS IDA
+  # (mechanisms/ida_ggl.hpp), with SUNDIALS' dense LU and, when SuiteSparse's KLU and SUNDIALS'
+  # interface to it are found (Debian: libsuitesparse-dev), with KLU; not run without IDA.
+  tumble_bench_sundials_module(ida _tumble_ida)
+  if(_tumble_ida)
+    set(_tumble_ida_defs TUMBLE_BENCH_HAVE_IDA=1)
+    target_link_libraries(tumble_bench PRIVATE ${_tumble_ida})
+    tumble_bench_sundials_module(sunlinsolklu _tumble_sunklu)
+    tumble_bench_sundials_module(sunmatrixsparse _tumble_sunsparse)
+    find_library(TUMBLE_KLU_LIBRARY NAMES klu)
+    find_path(TUMBLE_KLU_INCLUDE_DIR klu.h PATH_SUFFIXES suitesparse)
+    if(_tumble_sunklu AND _tumble_sunsparse AND TUMBLE_KLU_LIBRARY AND TUMBLE_KLU_INCLUDE_DIR)
+      list(APPEND _tumble_ida_defs TUMBLE_BENCH_HAVE_KLU=1)
+      set_source_files_properties(mechanisms/flyball.cpp PROPERTIES
+        INCLUDE_DIRECTORIES ${TUMBLE_KLU_INCLUDE_DIR})
+      target_link_libraries(tumble_bench PRIVATE ${_tumble_sunklu} ${_tumble_sunsparse}
+                            ${TUMBLE_KLU_LIBRARY})
+      message(STATUS "tumble_bench: A05 runs the IDA study with SUNDIALS' dense LU and KLU")
+    else()
+      message(STATUS "tumble_bench: A05 runs the IDA study with SUNDIALS' dense LU only "
+                     "(KLU not found; Debian: libsuitesparse-dev)")
+    endif()
+    set_property(SOURCE mechanisms/flyball.cpp APPEND PROPERTY COMPILE_DEFINITIONS
+                 ${_tumble_ida_defs})
+  else()
+    message(STATUS "tumble_bench: SUNDIALS' IDA not found: A05 runs without the IDA study")
+  endif()
   # tumble_explicit_check: the explicit path against its Fehlberg 7(8) floor timed a second way,
   # outside the main job's harness, both in one unit as in a user's program
   # (floors/explicit_check.cpp).

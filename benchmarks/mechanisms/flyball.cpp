@@ -6,7 +6,8 @@
 // the largest distance of the slider's height s from the reference's over the 200 outputs (m),
 // the quantity the benchmark asks for. The dampers make the scene stiff: the front door chooses
 // BDF with the exact Jacobian, and Fehlberg 7(8) at loose tolerances is held at its stability
-// bound (or throws StiffSceneError, a failed row).
+// bound (or throws StiffSceneError, a failed row). When SUNDIALS' IDA is found, the rows of a
+// study of the index-2 formulation in IDA (mechanisms/ida_ggl.hpp) join them.
 
 #include <cstddef>
 #include <functional>
@@ -17,6 +18,9 @@
 
 #include "common/format.hpp"
 #include "mechanisms/mechanisms.hpp"
+#if TUMBLE_BENCH_HAVE_IDA
+#include "mechanisms/ida_ggl.hpp"
+#endif
 #include "mechanisms/run.hpp"
 #include "mechanisms/track.hpp"
 #include "tumble/integrate.hpp"
@@ -58,6 +62,12 @@ MechanismResult run_mechanism_a05(const MechanismPlan& plan, const std::function
                 "7(8) at 1e-12 (" +
                 duration(reference_seconds) + ")";
   r.rows = mechanism_sweep(plan, g.scene, times, record, measure, step);
+#if TUMBLE_BENCH_HAVE_IDA
+  // The study of a stabilized index-2 formulation in SUNDIALS IDA (issue 18, item 7), on the same
+  // outputs and measured by the same `slider`.
+  const std::vector<MechanismRow> ida = ida_ggl_rows(plan, g.scene, times, record, measure);
+  r.rows.insert(r.rows.end(), ida.begin(), ida.end());
+#endif
   // MuJoCo, when installed: its model from the example's data, measured by the same `slider`.
   using namespace flyball;
   const FlyballGovernor data{

@@ -54,10 +54,11 @@ require_debian_packages() {
 # What a build of tumble needs (Boost for the explicit integrator's Boost.Odeint, oneTBB for the
 # ensembles across cores, Open MPI and its mpirun for the ensembles across ranks), and what the
 # benchmarks add (Google Benchmark; Boost.Odeint and SUNDIALS' ARKODE for tumble_bench's floors,
-# listed again so the benchmarks keep them whatever the library's list becomes; matplotlib for
-# tumble_bench's plots).
+# listed again so the benchmarks keep them whatever the library's list becomes; SuiteSparse's KLU
+# for the IDA study of A05, mechanisms/ida_ggl.hpp; matplotlib for tumble_bench's plots).
 # shellcheck disable=SC2034  # used by the scripts that source this file
 TUMBLE_BUILD_PACKAGES=(cmake make g++ libeigen3-dev libsundials-dev catch2 libboost-dev libtbb-dev
                        mpi-default-dev openmpi-bin)
 # shellcheck disable=SC2034
-TUMBLE_BENCH_PACKAGES=(libbenchmark-dev libboost-dev libsundials-dev python3 python3-matplotlib)
+TUMBLE_BENCH_PACKAGES=(libbenchmark-dev libboost-dev libsundials-dev libsuitesparse-dev python3
+                       python3-matplotlib)
