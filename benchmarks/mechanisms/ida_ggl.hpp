@@ -20,12 +20,13 @@
 // evaluation is cheap, and its Jacobian is sparse (a body's rows touch only its joints' bodies and
 // its couplings'), where CVODE's of the index-1 ODE is dense for a connected mechanism.
 // IDA's options: the multipliers are algebraic (IDASetId), left out of the error test
-// (IDASetSuppressAlg), with the tolerance and first step below. Its Jacobian: difference quotients,
-// over the pattern of the residual (probed once at a perturbed state, where no entry vanishes by
-// accident), with the columns that share no row perturbed together (Curtis, Powell and Reid, 1974:
-// 47 residuals for A05's 96 columns); factored by SUNDIALS' dense LU, and by KLU (SuiteSparse) when
-// TUMBLE_BENCH_HAVE_KLU. Chart bases are not re-centred: a scene of Euler parameters (A05) has
-// nothing to re-centre, and one with three-parameter sets is not what this study runs.
+// (IDASetSuppressAlg), with the tolerance below; the rest are IDA's defaults. Its Jacobian:
+// difference quotients, over the pattern of the residual (probed once at a perturbed state, where
+// no entry vanishes by accident), with the columns that share no row perturbed together (Curtis,
+// Powell and Reid, 1974: 47 residuals for A05's 96 columns); factored by SUNDIALS' dense LU, and by
+// KLU (SuiteSparse) when TUMBLE_BENCH_HAVE_KLU. Chart bases are not re-centred: a scene of Euler
+// parameters (A05) has nothing to re-centre, and one with three-parameter sets is not what this
+// study runs.
 
 #include <algorithm>
 #include <cmath>
@@ -274,14 +275,13 @@ inline bool flushes_subnormals() {
 #endif
 }
 
-/// The first step (s). IDA's own estimate at tight tolerances (4e-12 s at 1e-6 on A05) makes the
-/// index-2 iteration matrix singular to rounding (its condition grows as h^-2), and the first
-/// step fails.
-inline constexpr double kFirstStep = 1e-6;
 /// The multipliers' absolute tolerance in the Newton iteration's convergence test (they are left
-/// out of the error test). With the state's (rtol = atol = tol), runs at tol <= 1e-10 fail at
-/// t = 0, and with 1e-6, those at 1e-4 and 1e-5 take 5 to 26 s (thousands of convergence
-/// failures); 1 (the reactions are forces and moments of 1 to 1e3 N, N m) runs every rung.
+/// out of the error test). On A05, with the state's (rtol = atol = tol), the run at 1e-4 takes
+/// 30 s (41474 steps, 20733 convergence failures) and those at 1e-8 and tighter fail at t = 0, the
+/// Newton iteration failing as h is cut to 4e-15 s and below (the index-2 iteration matrix's
+/// condition grows as h^-2); with 1e-6, 1e-4 and 1e-5 take 29 and 2.8 s and 1e-10 and tighter
+/// fail at t = 0. With 1 (the reactions are forces and moments of 1 to 1e3 N, N m), every rung
+/// runs.
 inline constexpr double kMultiplierTolerance = 1.0;
 
 namespace detail_ida {
@@ -403,7 +403,6 @@ void ida_ggl_run(const SceneT& scene, IdaLinearSolver solver, double tol,
       detail_ida::check(IDASetId(m, id.get()), "IDASetId");
       detail_ida::check(IDASetSuppressAlg(m, SUNTRUE), "IDASetSuppressAlg");
       detail_ida::check(IDASetMaxNumSteps(m, 1000000), "IDASetMaxNumSteps");
-      detail_ida::check(IDASetInitStep(m, kFirstStep), "IDASetInitStep");
       td::MatrixHandle a;
       td::LinearSolverHandle ls;
 #if TUMBLE_BENCH_HAVE_KLU
@@ -452,7 +451,7 @@ void ida_ggl_run(const SceneT& scene, IdaLinearSolver solver, double tol,
   finish_timing(run, seconds);
   row.method = ida_ggl_label(solver);
   row.tol = tol;
-  // Subnormal arithmetic costs these runs up to 2.6x on A05 (docs/benchmarks/mechanisms.md): say
+  // Subnormal arithmetic costs these runs up to 2.9x on A05 (docs/benchmarks/mechanisms.md): say
   // which floating-point environment they ran in.
   row.note =
       std::string("a study, not a path of the library; subnormals ") +
