@@ -43,6 +43,9 @@ bool timed_mechanism_run(const SceneT& scene, typename I::Options options,
         run.error_test_failures = st.rejected_steps;
       } else {
         run.error_test_failures = st.error_test_failures;
+      }
+      // CVODE's counters, SceneIntegrator's too (its statistics also have rejected_steps).
+      if constexpr (requires { st.nonlinear_convergence_failures; }) {
         run.convergence_failures = st.nonlinear_convergence_failures;
         run.jacobian_evals = st.jacobian_evals;
       }
