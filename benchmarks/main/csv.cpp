@@ -53,7 +53,7 @@ void write_mechanism_csv(const std::filesystem::path& path, const MechanismResul
   std::ofstream f(path);
   f << "problem,method,tol,rtol,atol,ok,error_message,time_s,time_median_s,wall_time_s,"
        "cpu_time_s,reps,error,constraint_residual_end,steps,rhs_evals,jacobian_evals,"
-       "rejected_steps,convergence_failures,methods_chosen\n";
+       "rejected_steps,convergence_failures,methods_chosen,relaxed_steps\n";
   for (const MechanismRow& x : r.rows) {
     f << csv_quote(r.id) << ',' << csv_quote(x.method) << ',' << num(x.tol) << ',' << num(x.tol)
       << ',' << num(x.tol) << ',' << (x.run.ok ? 1 : 0) << ',' << csv_quote(x.run.error) << ','
@@ -61,7 +61,8 @@ void write_mechanism_csv(const std::filesystem::path& path, const MechanismResul
       << ',' << num(x.run.cpu_seconds) << ',' << x.run.reps << ',' << num(x.error) << ','
       << num(x.run.constraint_drift) << ',' << x.run.steps << ',' << x.run.rhs_evals << ','
       << x.run.jacobian_evals << ',' << x.run.error_test_failures << ','
-      << x.run.convergence_failures << ',' << csv_quote(x.note) << '\n';
+      << x.run.convergence_failures << ',' << csv_quote(x.note) << ',' << x.run.relaxed_steps
+      << '\n';
   }
 }
 

@@ -44,6 +44,9 @@ bool timed_mechanism_run(const SceneT& scene, typename I::Options options,
       } else {
         run.error_test_failures = st.error_test_failures;
       }
+      if constexpr (requires { st.relaxed_steps; }) {
+        run.relaxed_steps = st.relaxed_steps;
+      }
       // CVODE's counters, SceneIntegrator's too (its statistics also have rejected_steps).
       if constexpr (requires { st.nonlinear_convergence_failures; }) {
         run.convergence_failures = st.nonlinear_convergence_failures;
