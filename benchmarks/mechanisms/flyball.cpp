@@ -63,8 +63,8 @@ MechanismResult run_mechanism_a05(const MechanismPlan& plan, const std::function
                 duration(reference_seconds) + ")";
   r.rows = mechanism_sweep(plan, g.scene, times, record, measure, step);
 #if TUMBLE_BENCH_HAVE_IDA
-  // The study of a stabilized index-2 formulation in SUNDIALS IDA (issue 18, item 7), on the same
-  // outputs and measured by the same `slider`.
+  // The study of a stabilized index-2 formulation in SUNDIALS IDA (the alternative to BDF for
+  // stiff mechanisms, docs/mechanisms.md), on the same outputs and measured by the same `slider`.
   const std::vector<MechanismRow> ida = ida_ggl_rows(plan, g.scene, times, record, measure);
   r.rows.insert(r.rows.end(), ida.begin(), ida.end());
 #endif

@@ -1,7 +1,7 @@
 #pragma once
-// tumble_bench, study (e), A05: the formulation issue 18 (item 7) asked to be measured against the
-// library's: a mechanism as a stabilized index-2 DAE in SUNDIALS IDA, beside CVODE's BDF on
-// tumble's index-1 ODE (SceneIntegrator: the constraint solve inside every right-hand side, the
+// tumble_bench, study (e), A05: the alternative to the library's stiff path for mechanisms,
+// measured against it: a mechanism as a stabilized index-2 DAE in SUNDIALS IDA, beside CVODE's BDF
+// on tumble's index-1 ODE (SceneIntegrator: the constraint solve inside every right-hand side, the
 // exact Jacobian, the state projected after each step). It is a study here, not a path of the
 // library: the measurement and the reasons are in docs/benchmarks/mechanisms.md (2026-12-06).
 //
@@ -14,6 +14,7 @@
 //   J nu                                                  = 0   (velocity constraints)
 //   C(q)                                                  = 0   (position constraints)
 //   |p|^2 - 1                                             = 0   (each body in Euler parameters)
+// thetadot is the inverse of omega = G(theta) thetadot (the reference chapter's Eq. 1.5), so
 // C_q [dv; thetadot(., domega)] = J J^T, invertible for independent rows: mu is zero on the exact
 // solution, and each step meets C = 0 and J nu = 0 to the Newton iteration's accuracy (IDA has no
 // projection). The residual is the right-hand side's passes without the constraint solve: each
@@ -58,6 +59,7 @@
 #include "mechanisms/mechanisms.hpp"
 #include "tumble/integrate/detail/sundials.hpp"
 #include "tumble/orientation/euler_parameters.hpp"
+#include "tumble/scene/assembly.hpp"  // body_velocities
 #include "tumble/scene/rhs.hpp"
 #include "tumble/scene/state.hpp"
 
@@ -111,9 +113,6 @@ template <class SceneT> class GglResidual {
     }
     scene_.for_each_entry([&](const auto& e) {
       using Body = std::remove_cvref_t<decltype(e.body)>;
-      const auto& k = ws_.kinematics(e);
-      j.nu.col(e.id).template head<3>() = k.velocity;
-      j.nu.col(e.id).template tail<3>() = k.omega;
       if constexpr (Body::n_r == 3) {
         f_.template segment<3>(e.offset) += j.acc.col(e.id).template head<3>();
       }
@@ -128,13 +127,9 @@ template <class SceneT> class GglResidual {
       res(n_ + 2 * m_ + static_cast<Eigen::Index>(b)) = p.squaredNorm() - 1;
     }
     res.head(n_) = ConstMap(yp, n_) - f_;
-    for (int row = 0; row < m_; ++row) {
-      double v = j.ja.row(row).dot(j.nu.col(j.joint_a[row]));
-      if (j.joint_b[row] >= 0) {
-        v += j.jb.row(row).dot(j.nu.col(j.joint_b[row]));
-      }
-      res(n_ + row) = v;
-    }
+    detail::body_velocities(scene_, ws_, j.nu);
+    detail::joint_apply(j, j.nu, j.rhs);  // J nu
+    res.segment(n_, m_) = j.rhs;
     res.segment(n_ + m_, m_) = j.c;
   }
 

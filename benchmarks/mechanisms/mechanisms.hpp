@@ -20,7 +20,8 @@
 //   OdeintIntegrator with Fehlberg 7(8), explicit,
 //   SceneIntegrator, CVODE's BDF with the scene's exact Jacobian.
 // On A05, when SUNDIALS' IDA is found, the rows of a study join them: the stabilized index-2
-// formulation in IDA (mechanisms/ida_ggl.hpp), the measurement issue 18 asked for.
+// formulation in IDA (mechanisms/ida_ggl.hpp), measured as the alternative to BDF for stiff
+// mechanisms.
 // Each run is timed as the single-body study's are (construction and integration over all output
 // times, best of Timing::reps; common/bench.hpp), its error measured against the reference by the
 // problem's own measure, and the constraint residual |C| taken at its end. The report
