@@ -12,9 +12,10 @@
 // one-step method can do without a restart (docs/integrators.md, "The explicit integrator"):
 // charts re-centered after a step that ends in a switch zone (one that ends deep in it is
 // retried shorter), Euler parameters and a mechanism's joints projected after every step, user
-// events located on the step (Illinois) and the step cut there, output times stepped to exactly
-// (or, with Dormand-Prince, read off its dense output), and a stiffness test every
-// stiffness_window attempts and when a budget is spent (integrate/detail/explicit_diagnostics.hpp).
+// events located on the step (Illinois) and the step cut there (detail/explicit_events.hpp),
+// output times stepped to exactly (or, with Dormand-Prince, read off its dense output), and a
+// stiffness test every stiffness_window attempts and when a budget is spent
+// (detail/explicit_diagnostics.hpp).
 // Never a run that does not end, never a NaN state: non-finite trial states are rejected, and a
 // step size at the rounding level of t throws. An exception of a load, force or event function
 // stops it as CVODE's does (detail/callback_error.hpp): reason() callback, the original as cause().
@@ -35,8 +36,8 @@
 #include "tumble/core/errors.hpp"
 #include "tumble/core/format.hpp"
 #include "tumble/integrate/detail/callback_error.hpp"
-#include "tumble/integrate/detail/event_action.hpp"
 #include "tumble/integrate/detail/explicit_diagnostics.hpp"
+#include "tumble/integrate/detail/explicit_events.hpp"
 #include "tumble/integrate/detail/explicit_numerics.hpp"
 #include "tumble/integrate/detail/odeint_stepper.hpp"
 #include "tumble/integrate/detail/state_check.hpp"
@@ -73,7 +74,8 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       : scene_(&scene),
         options_(detail::checked_odeint_options<N>(options, scene.size())),
         ws_(scene),
-        stepper_(detail::make_odeint_stepper<State>(options_)) {
+        stepper_(detail::make_odeint_stepper<State>(options_)),
+        events_(scene.events(), scene.size(), static_cast<std::size_t>(scene.body_count()), kWho) {
     ws_.stabilize_constraints = options_.stabilize_quaternions;
     const int n = scene.size();
     if constexpr (N == Eigen::Dynamic) {
@@ -90,11 +92,9 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
       }
     });
     switches_.assign(static_cast<std::size_t>(scene.body_count()), 0);
-    ev_old_.assign(scene.events().size(), 0.0);
-    ev_new_.assign(scene.events().size(), 0.0);
-    // What event actions see, the interpolated outputs and the current state (sync()): sized
-    // once, so that neither a step nor an output allocates.
-    for (SceneState* s : {&event_state_, &out_state_, &state_}) {
+    // The interpolated outputs and the current state (sync()): sized once, so that neither a step
+    // nor an output allocates.
+    for (SceneState* s : {&out_state_, &state_}) {
       s->y.setZero(n);
       s->base.assign(static_cast<std::size_t>(scene.body_count()), Matrix3<double>::Identity());
     }
@@ -180,7 +180,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     t_ = t;
     window_ = detail::StepRun{.t_start = t};
     h_ = options_.initial_step > 0.0 ? options_.initial_step : initial_step();
-    events_at(t_, x_, ev_old_);
+    events_.start(t_, x_.data(), bases());
     sync();
   }
 
@@ -356,19 +356,6 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     return changed || recentered;
   }
 
-  void events_at(double t, const State& x, CacheLineVector<double>& g) {
-    const auto& events = scene_->events();
-    if (events.empty()) {  // called after every step that projects: nothing to set up
-      return;
-    }
-    const SceneStateView view(x.data(), size(), bases());
-    detail::guard_callbacks(kWho, "roots()", t, t_, [&] {
-      for (std::size_t i = 0; i < events.size(); ++i) {
-        g[i] = events[i].function(t, view);
-      }
-    });
-  }
-
   /// The initial step (detail::initial_step) for the stepper's order.
   double initial_step() {
     const double p = std::visit([](const auto& s) { return double(s.order); }, stepper_);
@@ -501,7 +488,7 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   /// The step's start is kept (x_old_) only for Dormand-Prince's dense output and the events.
   template <class S, class OnStep>
   void finish_step(S& stepper, const System<S>& sys, double t_new, OnStep& on_step) {
-    if (S::dense || !ev_old_.empty()) {
+    if (S::dense || !events_.empty()) {
       std::swap(x_old_, x_);
       std::swap(dxdt_old_, dxdt_);
     }
@@ -513,66 +500,18 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     t_ = t_new;
     on_step(t_old, t_new);
     bool event = false, recentered = false;
-    std::size_t fired = 0;
-    if (!ev_old_.empty()) {
-      events_at(t_new, x_, ev_new_);
-      if ((event = locate_events(stepper, sys, t_old, t_new, fired))) {
-        events_at(t_, x_, ev_new_);  // after the action, before projection and re-centering
-      }
+    if (!events_.empty()) {  // on the step's interpolant (Odeint's, or a step of the same method)
+      event = events_.on_step(t_old, t_, x_, x_tmp_, base_, [&](double t, State& out) {
+        detail::guard_callbacks(kWho, "rhs()", t, t_, [&] {
+          stepper.state_at(sys, t, out, x_old_, dxdt_old_, t_old, x_, dxdt_, t_new);
+        });
+        count_stages(S::evaluations_per_state_at);
+      });
+      stats_.events += event ? 1 : 0;
     }
     const bool changed = after_change(recentered) || event;
     deriv_valid_ = S::fsal && !changed;
-    if (changed) {
-      events_at(t_, x_, ev_old_);
-      // When projection or re-centering (rounding, drift) moved the fired event's function back
-      // across zero, the next step would find the same root again: it starts from zero instead.
-      if (event && (ev_new_[fired] < 0.0) != (ev_old_[fired] < 0.0)) {
-        ev_old_[fired] = 0.0;
-      }
-    } else {
-      std::swap(ev_old_, ev_new_);
-    }
-  }
-
-  /// Finds the first event whose function changed sign over the last step (in its direction),
-  /// locates its root, cuts the step there (x_, t_) and applies its action. True if one was (its
-  /// index in `fired`).
-  template <class S>
-  bool locate_events(S& stepper, const System<S>& sys, double t_old, double t_new,
-                     std::size_t& fired) {
-    const auto& events = scene_->events();
-    const auto state_at = [&](double t, State& out) {
-      detail::guard_callbacks(kWho, "rhs()", t, t_, [&] {
-        stepper.state_at(sys, t, out, x_old_, dxdt_old_, t_old, x_, dxdt_, t_new);
-      });
-      count_stages(S::evaluations_per_state_at);
-    };
-    double t_first = t_new;
-    const std::size_t first = detail::first_event(
-        events, ev_old_, ev_new_, t_old, t_new,
-        [&](std::size_t i, double c) {
-          state_at(c, x_tmp_);
-          return detail::guard_callbacks(kWho, "roots()", c, t_, [&] {
-            return events[i].function(c, SceneStateView(x_tmp_.data(), size(), bases()));
-          });
-        },
-        t_first);
-    if (first == events.size()) {
-      return false;
-    }
-    fired = first;
-    // The state just past the root (its function on the new side), where the action applies.
-    if (t_first < t_new) {
-      state_at(t_first, x_tmp_);
-      std::swap(x_, x_tmp_);
-      t_ = t_first;
-    }
-    ++stats_.events;
-    if (events[first].action) {
-      Eigen::Map<Vec> y = map(x_);
-      detail::apply_event_action(events[first], t_, event_state_, y, base_);
-    }
-    return true;
+    events_.next_step(changed, t_, x_.data(), bases());
   }
 
   /// detail::spectral_radius at the current state (only when a budget is spent, so the scratch
@@ -590,26 +529,11 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
     return detail::spectral_radius(f, map(std::as_const(x_)), map(std::as_const(dxdt_)), v, y1, f1);
   }
 
-  /// The stiffness test (detail::looks_stiff) on a full window's attempts (stiffness_window:
-  /// throws StiffSceneError, or starts the next window) or, `spent`, this advance's, whose step
-  /// budget is spent (throws, saying whether the scene looks stiff).
+  /// detail::stiffness_test on this advance's attempts (`spent`: its budget is spent) or on the
+  /// window's.
   void stiffness_test(double t_out, bool spent = false) {
-    if constexpr (SceneT::has_joints) {  // relaxed steps near a singular position
-      if (!spent && detail::excused_window(window_, run_)) {
-        window_ = detail::StepRun{.t_start = t_};
-        return;
-      }
-    }
-    double h_rho = 0.0;
-    const bool stiff = detail::looks_stiff(
-        spent ? run_ : window_, t_, [this] { return spectral_radius(); }, h_rho);
-    if (spent) {
-      detail::throw_out_of_budget(run_, options_.max_steps, t_, t_out, stiff, h_rho);
-    }
-    if (stiff) {
-      detail::throw_stiff_window(window_, t_, h_rho, t_out);
-    }
-    window_ = detail::StepRun{.t_start = t_};
+    detail::stiffness_test(window_, run_, t_, t_out, options_.max_steps, spent, SceneT::has_joints,
+                           [this] { return spectral_radius(); });
   }
 
   /// Copies the current state into state_; no allocation.
@@ -637,11 +561,10 @@ template <class SceneT, int N = Eigen::Dynamic> class OdeintIntegrator {
   double tolerance_floor_ = 0.0;    ///< > 0: the next step's error test asks no less (joints)
   CacheLineVector<double> g_, g0_;  ///< chart roots at a step's end and start
   std::vector<double> deep_;        ///< per chart body: roots below this reject a step
-  CacheLineVector<double> ev_old_;  ///< event functions at the step's start
-  CacheLineVector<double> ev_new_;  ///< and at its end
+  detail::StepEvents events_;       ///< the scene's events: their functions at the step's ends
   ChartBases base_;
   CacheLineVector<long> switches_;
-  SceneState event_state_, state_, out_state_;
+  SceneState state_, out_state_;
   OdeintStatistics stats_;
 };
 

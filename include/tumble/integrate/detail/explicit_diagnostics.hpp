@@ -1,18 +1,13 @@
 #pragma once
 // What the explicit integrator (explicit_integrator.hpp) knows about its own progress, and how it
 // says why it stopped: the attempts one advance() or one stiffness window has spent (StepRun),
-// the stiffness test on them, the two failures they end in (a stiff scene, a spent step budget)
-// with their messages, and the search for the first event that fired over a step. Kept apart
-// from the step loop, which calls them only when a window is full, a budget is spent or an
-// event function changed sign.
+// the stiffness test on them, and the two failures they end in (a stiff scene, a spent step
+// budget) with their messages. Kept apart from the step loop, which calls them only when a window
+// is full or a budget is spent.
 
-#include <algorithm>
-#include <cmath>
-#include <cstddef>
 #include <string>
 
 #include "tumble/core/format.hpp"
-#include "tumble/integrate/detail/explicit_numerics.hpp"
 #include "tumble/integrate/errors.hpp"
 
 namespace tumble::detail {
@@ -118,34 +113,26 @@ bool looks_stiff(const StepRun& r, double t, SpectralRadius&& spectral_radius, d
                                  IntegrationFailure::step_budget, t);
 }
 
-/// Whether an event function going from a to b crossed zero in the event's direction (> 0: rising
-/// only, < 0: falling only, 0: both).
-[[nodiscard]] inline bool crosses(double a, double b, int direction) {
-  return (direction >= 0 && a < 0.0 && b >= 0.0) || (direction <= 0 && a > 0.0 && b <= 0.0);
-}
-
-/// The first of `events` whose function crossed zero over the step from t_old to t_new (values
-/// g_old, g_new at its ends), its root located by the Illinois method to 1e-12 of the time scale
-/// on value(i, t), event i's function at t on the step's interpolant. Returns events.size() when
-/// none crossed; else the index, with its root in t_first.
-template <class Events, class Values, class Value>
-std::size_t first_event(const Events& events, const Values& g_old, const Values& g_new,
-                        double t_old, double t_new, Value&& value, double& t_first) {
-  std::size_t first = events.size();
-  t_first = t_new;
-  const double tol = 1e-12 * std::max(std::abs(t_new), t_new - t_old);
-  for (std::size_t i = 0; i < events.size(); ++i) {
-    if (!crosses(g_old[i], g_new[i], events[i].direction)) {
-      continue;
-    }
-    const double b =
-        illinois([&](double c) { return value(i, c); }, t_old, t_new, g_old[i], g_new[i], tol);
-    if (b < t_first || first == events.size()) {
-      first = i;
-      t_first = b;
-    }
+/// The stiffness test (looks_stiff) at t on a full window's attempts, or (`spent`) on those of
+/// `run`, whose step budget max_steps is spent: throws StiffSceneError for a window that looks
+/// stiff, throw_out_of_budget's failure for a spent budget, and otherwise starts the next window.
+/// `excusable`: a window with relaxed steps (a mechanism's) may draw no verdict (excused_window).
+template <class SpectralRadius>
+void stiffness_test(StepRun& window, StepRun& run, double t, double t_out, long max_steps,
+                    bool spent, bool excusable, SpectralRadius&& spectral_radius) {
+  if (excusable && !spent && excused_window(window, run)) {
+    window = StepRun{.t_start = t};
+    return;
   }
-  return first;
+  double h_rho = 0.0;
+  const bool stiff = looks_stiff(spent ? run : window, t, spectral_radius, h_rho);
+  if (spent) {
+    throw_out_of_budget(run, max_steps, t, t_out, stiff, h_rho);
+  }
+  if (stiff) {
+    throw_stiff_window(window, t, h_rho, t_out);
+  }
+  window = StepRun{.t_start = t};
 }
 
 }  // namespace tumble::detail
