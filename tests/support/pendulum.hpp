@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "support/torque_free.hpp"
+#include "support/elliptic.hpp"
 
 namespace tumble::test {
 
