@@ -10,6 +10,7 @@
 
 #include <Eigen/Geometry>
 
+#include "support/body_fixtures.hpp"
 #include "support/catch.hpp"
 #include "support/random.hpp"
 #include "support/torque_free.hpp"
@@ -148,11 +149,9 @@ TEST_CASE("mechanism: a free-floating chain keeps its momenta, its energy and it
   // M^-1 J^T). Started off the constraints (rough positions, arbitrary velocities) and assembled.
   using Body = RigidBody<EulerParameters>;
   Mechanism<Bodies<Body>, Joints<Spherical, Revolute>> scene;
-  const auto box = [](double m, const Vector3d& d) {  // a box of mass m and edges d
-    return Body(MassProperties<>::about_centroid(
-        m, Vector3d(d(1) * d(1) + d(2) * d(2), d(0) * d(0) + d(2) * d(2), d(0) * d(0) + d(1) * d(1))
-                   .asDiagonal() *
-               (m / 12)));
+  const auto box = [](double m, const Vector3d& sides) {
+    return Body(
+        MassProperties<>::about_centroid(m, tumble::test::box_moments(m, sides).asDiagonal()));
   };
   const auto a =
       scene.add(box(3.0, Vector3d(0.6, 0.4, 0.3)),

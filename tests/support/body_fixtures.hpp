@@ -151,6 +151,13 @@ inline std::vector<PointMass> point_cloud(double mass, const Vector3d& moments,
   return cloud;
 }
 
+/// The principal moments of inertia of a solid box of mass m and sides (a, b, c) about its
+/// centroid: m / 12 (b^2 + c^2, a^2 + c^2, a^2 + b^2).
+inline Vector3d box_moments(double mass, const Vector3d& sides) {
+  const Vector3d sq = sides.cwiseProduct(sides);
+  return mass / 12.0 * Vector3d(sq(1) + sq(2), sq(0) + sq(2), sq(0) + sq(1));
+}
+
 /// A random solid box (sides in [side_min, side_max]; principal moments up to 100 apart with
 /// the defaults) with random principal axes; the centroid at the reference point (`offset`
 /// false) or at a random offset (|r_g| ~ 0.5).
@@ -160,8 +167,7 @@ inline BodyModel random_body(Random& rng, bool offset, double side_min = 0.2,
   b.mass = rng.uniform(0.5, 5.0);
   const Vector3d sides(rng.uniform(side_min, side_max), rng.uniform(side_min, side_max),
                        rng.uniform(side_min, side_max));
-  const Vector3d sq = sides.cwiseProduct(sides);
-  const Vector3d moments = b.mass / 12.0 * Vector3d(sq(1) + sq(2), sq(0) + sq(2), sq(0) + sq(1));
+  const Vector3d moments = box_moments(b.mass, sides);
   const Matrix3d axes = rng.rotation();
   b.inertia_centroid = axes * moments.asDiagonal() * axes.transpose();
   b.inertia_centroid = 0.5 * (b.inertia_centroid + b.inertia_centroid.transpose()).eval();

@@ -61,7 +61,7 @@ class StepEvents {
  public:
   /// For `events` (not owned: the scene's) on states of n entries and `bodies` chart bases.
   StepEvents(const std::vector<Event>& events, Eigen::Index n, std::size_t bodies, const char* who)
-      : events_(&events), n_(n), who_(who) {
+      : events_(&events), n_(n), who_(who), fired_(events.size()) {
     g_old_.assign(events.size(), 0.0);
     g_new_.assign(events.size(), 0.0);
     seen_.y.setZero(n);  // what an action sees: sized once
@@ -149,7 +149,7 @@ class StepEvents {
   const char* who_;
   CacheLineVector<double> g_old_;  ///< the functions at the step's start
   CacheLineVector<double> g_new_;  ///< and at its end
-  std::size_t fired_ = 0;          ///< the event fired on the last step, or events_->size()
+  std::size_t fired_;              ///< the event fired on the last step, or events_->size()
   SceneState seen_;
 };
 
